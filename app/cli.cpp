@@ -1,0 +1,45 @@
+#include "app/cli.hpp"
+
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/simulate_command.hpp"
+#include "sim/io/input_error.hpp"
+
+namespace pronk::app {
+
+int run_cli(int argc, const char* const* argv) {
+  CLI::App app{
+      "pronk: design and simulate robots that run by ballistic hops.\n"
+      "Exit codes: 0 success, 1 a run or check failed, 2 bad input."};
+  app.set_version_flag("--version", std::string(PRONK_VERSION) + " (" + PRONK_GIT_COMMIT + ")");
+  app.require_subcommand(1);
+  SimulateArgs simulate_args;
+  CLI::App* simulate = add_simulate_command(app, simulate_args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  try {
+    if (simulate->parsed()) return run_simulate(simulate_args);
+  } catch (const io::InputError& e) {
+    std::cerr << "pronk: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pronk: failed: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
+
+}  // namespace pronk::app

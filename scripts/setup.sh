@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages pronk needs (run as root). Idempotent: does
+# nothing when everything is already installed.
+set -euo pipefail
+pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
+      libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox)
+# The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
+if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  SUDO=""; [[ $(id -u) -ne 0 ]] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

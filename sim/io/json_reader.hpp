@@ -1,0 +1,89 @@
+// A strict reader over one JSON object: every key read is recorded, and
+// finish() rejects the keys nobody asked for (typos must not be silently
+// ignored). Every error is an InputError naming file, JSON Pointer, what was
+// expected and what was found.
+#pragma once
+
+#include <array>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "sim/io/input_error.hpp"
+
+namespace pronk::io {
+
+using json = nlohmann::json;
+
+/// Short description of a JSON value for error messages ("string \"abc\"").
+std::string describe(const json& value);
+/// Escapes a key for use in a JSON Pointer (RFC 6901).
+std::string pointer_escape(const std::string& key);
+
+class JsonReader {
+ public:
+  /// Reads the object `node` found at `pointer` of `file`. Throws if it is not an object.
+  JsonReader(const json& node, std::string file, std::string pointer);
+
+  bool has(const std::string& key) const;
+  /// Declares an optional key as known (read elsewhere or absent).
+  void optional(const std::string& key) { read_.insert(key); }
+  /// A sub-object (required).
+  JsonReader object(const std::string& key);
+  /// Array of sub-objects.
+  std::vector<JsonReader> object_array(const std::string& key);
+
+  /// A finite number in [lo, hi]; required.
+  double number(const std::string& key, double lo = -std::numeric_limits<double>::infinity(),
+                double hi = std::numeric_limits<double>::infinity());
+  /// A finite number in [lo, hi] or `fallback` when absent.
+  double number_or(const std::string& key, double fallback,
+                   double lo = -std::numeric_limits<double>::infinity(),
+                   double hi = std::numeric_limits<double>::infinity());
+  /// Strictly positive finite number (or fallback when absent).
+  double positive_or(const std::string& key, double fallback);
+  long integer_or(const std::string& key, long fallback, long lo, long hi);
+  bool boolean_or(const std::string& key, bool fallback);
+  std::string string_or(const std::string& key, const std::string& fallback);
+  /// A string that must be one of `choices`.
+  std::string choice_or(const std::string& key, const std::string& fallback,
+                        std::initializer_list<const char*> choices);
+  /// Array of exactly n finite numbers, each in [lo, hi].
+  Eigen::VectorXd vector(const std::string& key, int n,
+                         double lo = -std::numeric_limits<double>::infinity(),
+                         double hi = std::numeric_limits<double>::infinity());
+  Eigen::Vector3d vec3_or(const std::string& key, const Eigen::Vector3d& fallback);
+  /// rows x cols matrix given as an array of rows.
+  Eigen::MatrixXd matrix(const std::string& key, int rows, int cols);
+  /// Array of [x, y, z] points, between min_n and max_n of them.
+  std::vector<Eigen::Vector3d> vec3_list(const std::string& key, size_t min_n, size_t max_n);
+  /// Array of non-empty arrays of distinct integers in [0, max_index].
+  std::vector<std::vector<int>> index_groups(const std::string& key, long max_index);
+  /// Array of integers in [lo, hi].
+  std::vector<long> integer_array_or(const std::string& key, long lo, long hi);
+
+  /// Throws for the first key that was never read.
+  void finish() const;
+
+  /// Builds an error at this object's key (or at the object itself if key empty).
+  InputError error(const std::string& key, const std::string& expected,
+                   const std::string& found) const;
+  const std::string& pointer() const { return pointer_; }
+  const std::string& file() const { return file_; }
+  std::string pointer_of(const std::string& key) const;
+
+ private:
+  const json& get(const std::string& key);
+  const json* node_;
+  std::string file_;
+  std::string pointer_;
+  std::set<std::string> read_;
+};
+
+}  // namespace pronk::io

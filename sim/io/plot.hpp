@@ -1,0 +1,18 @@
+// Figures: a gnuplot script written beside the data and rendered to SVG. The
+// data (CSV) is the primary result; a missing gnuplot is reported once per
+// process and is not fatal.
+#pragma once
+
+#include <string>
+
+namespace pronk::io {
+
+/// Writes `dir/name.gp` (the script, which must write `name.svg` when run in `dir`)
+/// and runs gnuplot on it in `dir`. Returns false (after one message to stderr per
+/// process) when gnuplot is unavailable or fails; the script stays for the user.
+bool render_figure(const std::string& dir, const std::string& name, const std::string& script);
+
+/// True when a gnuplot executable is on PATH (checked once).
+bool gnuplot_available();
+
+}  // namespace pronk::io

@@ -1,0 +1,411 @@
+#include "sim/io/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "sim/io/json_reader.hpp"
+
+namespace pronk::io {
+
+using json = nlohmann::json;
+using scene::Vec3;
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+std::string number_text(double x) {
+  std::ostringstream s;
+  s.precision(10);
+  s << x;
+  return s.str();
+}
+
+// Checks the triangle inequalities of principal moments (a physical body).
+void check_principal_moments(const Eigen::Vector3d& I, const JsonReader& r, const std::string& key) {
+  for (int i = 0; i < 3; ++i) {
+    if (!(I[i] > 0.0)) {
+      throw r.error(key, "positive principal moments of inertia",
+                    "moment " + number_text(I[i]) + " kg m^2");
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double others = I[(i + 1) % 3] + I[(i + 2) % 3];
+    if (I[i] > others * (1.0 + 1e-12)) {
+      static const char* names[] = {"Ixx", "Iyy", "Izz"};
+      throw r.error(key,
+                    "principal moments satisfying the triangle inequalities (each <= sum of "
+                    "the other two)",
+                    std::string(names[i]) + " = " + number_text(I[i]) + " > " +
+                        number_text(others) + " (sum of the other two)");
+    }
+  }
+}
+
+scene::Body parse_body(JsonReader r) {
+  scene::Body b;
+  b.mass = r.positive_or("mass", b.mass);
+  if (r.has("inertia") && r.has("inertia_tensor")) {
+    throw r.error("inertia_tensor", "either \"inertia\" or \"inertia_tensor\", not both",
+                  "both keys");
+  }
+  if (r.has("inertia_tensor")) {
+    const std::string key = "inertia_tensor";
+    const Eigen::Matrix3d I = r.matrix(key, 3, 3);
+    if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-12 * I.cwiseAbs().maxCoeff()) {
+      throw r.error(key, "a symmetric 3x3 matrix", "an asymmetric matrix");
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+    check_principal_moments(eig.eigenvalues(), r, key);
+    b.inertia = 0.5 * (I + I.transpose());
+  } else {
+    Eigen::Vector3d I = r.has("inertia") ? Eigen::Vector3d(r.vector("inertia", 3))
+                                         : Eigen::Vector3d(b.inertia.diagonal());
+    check_principal_moments(I, r, "inertia");
+    b.inertia = I.asDiagonal();
+  }
+  r.finish();
+  return b;
+}
+
+}  // namespace
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "a readable JSON file", "no such file or unreadable");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  try {
+    return json::parse(buf.str());
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", "valid JSON", std::string("a syntax error: ") + e.what());
+  }
+}
+
+void apply_override(json& doc, const std::string& assignment) {
+  const std::string where = "--set " + assignment;
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || assignment.empty() || assignment[0] != '/') {
+    throw InputError("command line", "", "--set /json/pointer=value", "\"" + assignment + "\"");
+  }
+  const std::string ptr = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::parse_error&) {
+    value = text;  // a bare word: a string
+  }
+  json::json_pointer jp;
+  try {
+    jp = json::json_pointer(ptr);
+  } catch (const json::exception& e) {
+    throw InputError("command line (" + where + ")", ptr, "a valid JSON Pointer", e.what());
+  }
+  if (jp.empty()) throw InputError("command line (" + where + ")", ptr, "a pointer below the root", "the root");
+  const json::json_pointer parent = jp.parent_pointer();
+  if (!doc.contains(parent)) {
+    throw InputError("command line (" + where + ")", ptr, "a pointer whose parent exists in the scene",
+                     "no value at " + (parent.to_string().empty() ? "/" : parent.to_string()));
+  }
+  json& p = doc[parent];
+  const std::string last = jp.back();
+  if (p.is_array()) {
+    std::size_t idx = 0;
+    const bool numeric = !last.empty() && std::all_of(last.begin(), last.end(), ::isdigit);
+    if (numeric) idx = std::stoul(last.size() > 9 ? std::string("999999999") : last);
+    if (!numeric || idx >= p.size()) {
+      throw InputError("command line (" + where + ")", ptr,
+                       "an index below " + std::to_string(p.size()), "\"" + last + "\"");
+    }
+    p[idx] = value;
+  } else if (p.is_object()) {
+    p[last] = value;
+  } else {
+    throw InputError("command line (" + where + ")", ptr, "an object or array at the parent",
+                     describe(p));
+  }
+}
+
+scene::Scene parse_scene(const json& doc, const std::string& file) {
+  scene::Scene s;
+  JsonReader r(doc, file, "");
+  s.name = r.string_or("name", "scene");
+  if (s.name.empty() || s.name.find('/') != std::string::npos) {
+    throw r.error("name", "a non-empty name without '/'", "\"" + s.name + "\"");
+  }
+  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse"});
+  s.model = model == "pulse" ? scene::ModelKind::kPulse : scene::ModelKind::kImpulse;
+  s.gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
+  const std::string att = r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
+  s.attitude = att == "quaternion" ? scene::AttitudeFormulation::kQuaternion
+                                   : scene::AttitudeFormulation::kSmallAngleEuler123;
+  if (r.has("body")) s.body = parse_body(r.object("body"));
+  else r.optional("body");
+
+  // Legs.
+  if (r.has("legs")) {
+    JsonReader l = r.object("legs");
+    const std::string kind = l.choice_or("kind", "body_only", {"body_only", "legged"});
+    s.legs.body_only = kind == "body_only";
+    s.legs.length = l.positive_or("length", s.legs.length);
+    if (!s.legs.body_only) {
+      if (!l.has("hips")) throw l.error("hips", "an array of hip positions (legged)", "nothing");
+      s.legs.hips = l.vec3_list("hips", 1, 64);
+    } else if (l.has("hips")) {
+      throw l.error("hips", "no hips for kind \"body_only\"", "hips");
+    }
+    s.legs.disabled.assign(s.legs.hips.size(), false);
+    for (long i : l.integer_array_or("disabled", 0, std::max<long>(0, static_cast<long>(s.legs.hips.size()) - 1))) {
+      s.legs.disabled[static_cast<size_t>(i)] = true;
+    }
+    l.finish();
+  } else {
+    r.optional("legs");
+  }
+
+  // Controller.
+  scene::seed_gains(s.body, &s.controller.kp, &s.controller.kd);
+  if (r.has("controller")) {
+    JsonReader c = r.object("controller");
+    auto& k = s.controller;
+    k.hop_height = c.positive_or("hop_height", k.hop_height);
+    if (c.has("kp")) k.kp = c.vector("kp", 6, 0.0, 1e9);
+    if (c.has("kd")) k.kd = c.vector("kd", 6, 0.0, 1e9);
+    c.optional("kp");
+    c.optional("kd");
+    if (c.has("setpoint")) {
+      JsonReader sp = c.object("setpoint");
+      k.setpoint_position = sp.vec3_or("position", k.setpoint_position);
+      k.setpoint_velocity = sp.vec3_or("velocity", k.setpoint_velocity);
+      k.setpoint_yaw = sp.number_or("yaw_deg", 0.0, -360.0, 360.0) * kDeg;
+      sp.finish();
+    } else {
+      c.optional("setpoint");
+    }
+    if (c.has("bank")) {
+      JsonReader b = c.object("bank");
+      k.bank_enabled = b.boolean_or("enabled", true);
+      k.bank_kp = b.number_or("kp", 0.0, 0.0, 1e6);
+      k.bank_kd = b.number_or("kd", 0.0, 0.0, 1e6);
+      k.bank_max_roll = b.number_or("max_roll_deg", k.bank_max_roll / kDeg, 1e-6, 89.0) * kDeg;
+      b.finish();
+    } else {
+      c.optional("bank");
+    }
+    if (c.has("allocation")) {
+      JsonReader a = c.object("allocation");
+      const std::string scheme = a.choice_or("scheme", "minimum_norm", {"minimum_norm", "seed"});
+      k.allocation.scheme = scheme == "seed" ? control::AllocationScheme::kSeed
+                                             : control::AllocationScheme::kMinimumNorm;
+      k.allocation.max_leg_impulse = a.number_or("max_leg_impulse", 0.0, 0.0, 1e9);
+      k.allocation.residual_tol = a.number_or("residual_tol", k.allocation.residual_tol, 0.0, 1.0);
+      a.finish();
+    } else {
+      c.optional("allocation");
+    }
+    if (c.has("gait")) {
+      JsonReader g = c.object("gait");
+      const std::string kind = g.choice_or("kind", "pronk", {"pronk", "alternate"});
+      k.gait = kind == "alternate" ? scene::Gait::kAlternate : scene::Gait::kPronk;
+      if (k.gait == scene::Gait::kAlternate) {
+        const long n = static_cast<long>(s.legs.hips.size());
+        if (n == 0) throw g.error("kind", "a legged robot for an alternating gait", "body_only legs");
+        if (!g.has("groups")) throw g.error("groups", "leg index groups, e.g. [[0,3],[1,2]]", "nothing");
+        k.gait_groups = g.index_groups("groups", n - 1);
+      } else {
+        g.optional("groups");
+      }
+      g.finish();
+    } else {
+      c.optional("gait");
+    }
+    c.finish();
+  } else {
+    r.optional("controller");
+  }
+
+  if (r.has("pulse")) {
+    JsonReader p = r.object("pulse");
+    const std::string mode = p.choice_or("mode", "max_force", {"max_force", "duration"});
+    s.pulse.mode = mode == "duration" ? scene::PulseMode::kDuration : scene::PulseMode::kMaxForce;
+    s.pulse.max_force = p.positive_or("max_force", s.pulse.max_force);
+    s.pulse.duration = p.positive_or("duration", s.pulse.duration);
+    s.pulse.gravity_compensation = p.boolean_or("gravity_compensation", true);
+    p.finish();
+  } else {
+    r.optional("pulse");
+  }
+
+  if (r.has("initial")) {
+    JsonReader in = r.object("initial");
+    s.initial.position = in.vec3_or("position", s.initial.position);
+    s.initial.velocity = in.vec3_or("velocity", s.initial.velocity);
+    s.initial.angular_velocity = in.vec3_or("angular_velocity", s.initial.angular_velocity);
+    if (in.has("attitude_deg") && in.has("attitude_quaternion")) {
+      throw in.error("attitude_quaternion", "either attitude_deg or attitude_quaternion", "both");
+    }
+    const std::string set = in.choice_or("euler_set", "123", {"123", "313"});
+    if (in.has("attitude_deg")) {
+      const Vec3 a = in.vector("attitude_deg", 3, -720.0, 720.0) * kDeg;
+      s.initial.attitude = math::euler_to_quat(a, set == "313" ? math::EulerSet::k313 : math::EulerSet::k123);
+    }
+    if (in.has("attitude_quaternion")) {
+      const Eigen::VectorXd q = in.vector("attitude_quaternion", 4, -1e3, 1e3);
+      if (q.norm() < 1e-9) throw in.error("attitude_quaternion", "a non-zero quaternion [w, x, y, z]", "zero");
+      s.initial.attitude = math::Quat(q[0], q[1], q[2], q[3]).normalized();
+    }
+    in.finish();
+  } else {
+    r.optional("initial");
+  }
+
+  if (r.has("disturbances")) {
+    for (JsonReader d : r.object_array("disturbances")) {
+      scene::Disturbance dist;
+      dist.time = d.number("time", 0.0, 1e9);
+      dist.linear_impulse = d.vec3_or("linear_impulse", Vec3::Zero());
+      dist.angular_impulse = d.vec3_or("angular_impulse", Vec3::Zero());
+      d.finish();
+      s.disturbances.push_back(dist);
+    }
+    std::stable_sort(s.disturbances.begin(), s.disturbances.end(),
+                     [](const auto& a, const auto& b) { return a.time < b.time; });
+  } else {
+    r.optional("disturbances");
+  }
+
+  s.simulation.fall_min_height = 0.4 * s.legs.length;
+  if (r.has("simulation")) {
+    JsonReader m = r.object("simulation");
+    auto& sim = s.simulation;
+    sim.duration = m.number_or("duration", sim.duration, 1e-9, 1e7);
+    sim.max_strides = m.integer_or("max_strides", sim.max_strides, 1, 1000000000L);
+    sim.sample_interval = m.positive_or("sample_interval", sim.sample_interval);
+    if (m.has("solver")) {
+      JsonReader o = m.object("solver");
+      auto& so = sim.solver;
+      const std::string method = o.choice_or("method", std::string(ode::to_string(so.method)),
+                                             {"euler", "rk2", "rk4", "dopri5"});
+      ode::parse_method(method, &so.method);
+      so.rtol = o.positive_or("rtol", so.rtol);
+      so.atol = o.positive_or("atol", so.atol);
+      so.h_fixed = o.positive_or("h_fixed", so.h_fixed);
+      so.h_max = o.positive_or("h_max", so.h_max);
+      so.h_min = o.number_or("h_min", so.h_min, 0.0, 1.0);
+      so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
+      so.event_tol = o.positive_or("event_tol", so.event_tol);
+      so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
+      std::string err;
+      if (!so.validate(&err)) {
+        const std::string field = err.substr(0, err.find(':'));
+        throw o.error(field, "valid solver options", err);
+      }
+      o.finish();
+    } else {
+      m.optional("solver");
+    }
+    if (m.has("fall")) {
+      JsonReader f = m.object("fall");
+      sim.fall_min_height = f.number_or("min_height", sim.fall_min_height, -1e6, 1e6);
+      sim.fall_max_tilt = f.number_or("max_tilt_deg", sim.fall_max_tilt / kDeg, 1e-3, 180.0) * kDeg;
+      f.finish();
+    } else {
+      m.optional("fall");
+    }
+    m.finish();
+  } else {
+    r.optional("simulation");
+  }
+  if (!(s.initial.position.z() > s.simulation.fall_min_height)) {
+    throw InputError(file, "/initial/position/2",
+                     "a CoM height above the fall height " + number_text(s.simulation.fall_min_height) + " m",
+                     number_text(s.initial.position.z()));
+  }
+  r.finish();
+  return s;
+}
+
+scene::Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  json doc = read_json_file(path);
+  for (const auto& o : overrides) apply_override(doc, o);
+  return parse_scene(doc, path);
+}
+
+namespace {
+json vec(const Eigen::VectorXd& v) {
+  json a = json::array();
+  for (int i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
+}
+}  // namespace
+
+json scene_to_json(const scene::Scene& s) {
+  json j;
+  j["name"] = s.name;
+  j["model"] = std::string(scene::to_string(s.model));
+  j["gravity"] = s.gravity;
+  j["attitude"] = s.attitude == scene::AttitudeFormulation::kQuaternion ? "quaternion" : "small_angle_euler123";
+  json I = json::array();
+  for (int i = 0; i < 3; ++i) I.push_back(vec(s.body.inertia.row(i).transpose()));
+  j["body"] = {{"mass", s.body.mass}, {"inertia_tensor", I}};
+  json legs = {{"kind", s.legs.body_only ? "body_only" : "legged"}, {"length", s.legs.length}};
+  if (!s.legs.body_only) {
+    json hips = json::array();
+    for (const auto& h : s.legs.hips) hips.push_back(vec(h));
+    legs["hips"] = hips;
+    json dis = json::array();
+    for (size_t i = 0; i < s.legs.disabled.size(); ++i) {
+      if (s.legs.disabled[i]) dis.push_back(i);
+    }
+    legs["disabled"] = dis;
+  }
+  j["legs"] = legs;
+  const auto& c = s.controller;
+  json gait = {{"kind", c.gait == scene::Gait::kAlternate ? "alternate" : "pronk"}};
+  if (c.gait == scene::Gait::kAlternate) gait["groups"] = c.gait_groups;
+  j["controller"] = {
+      {"hop_height", c.hop_height},
+      {"kp", vec(c.kp)},
+      {"kd", vec(c.kd)},
+      {"setpoint", {{"position", vec(c.setpoint_position)}, {"velocity", vec(c.setpoint_velocity)},
+                    {"yaw_deg", c.setpoint_yaw / kDeg}}},
+      {"bank", {{"enabled", c.bank_enabled}, {"kp", c.bank_kp}, {"kd", c.bank_kd},
+                {"max_roll_deg", c.bank_max_roll / kDeg}}},
+      {"allocation", {{"scheme", c.allocation.scheme == control::AllocationScheme::kSeed ? "seed" : "minimum_norm"},
+                      {"max_leg_impulse", c.allocation.max_leg_impulse},
+                      {"residual_tol", c.allocation.residual_tol}}},
+      {"gait", gait}};
+  j["pulse"] = {{"mode", s.pulse.mode == scene::PulseMode::kDuration ? "duration" : "max_force"},
+                {"max_force", s.pulse.max_force},
+                {"duration", s.pulse.duration},
+                {"gravity_compensation", s.pulse.gravity_compensation}};
+  const auto& q = s.initial.attitude;
+  j["initial"] = {{"position", vec(s.initial.position)},
+                  {"velocity", vec(s.initial.velocity)},
+                  {"attitude_quaternion", {q.w(), q.x(), q.y(), q.z()}},
+                  {"angular_velocity", vec(s.initial.angular_velocity)}};
+  json d = json::array();
+  for (const auto& x : s.disturbances) {
+    d.push_back({{"time", x.time}, {"linear_impulse", vec(x.linear_impulse)},
+                 {"angular_impulse", vec(x.angular_impulse)}});
+  }
+  j["disturbances"] = d;
+  const auto& m = s.simulation;
+  j["simulation"] = {
+      {"duration", m.duration},
+      {"max_strides", m.max_strides},
+      {"sample_interval", m.sample_interval},
+      {"solver", {{"method", std::string(ode::to_string(m.solver.method))},
+                  {"rtol", m.solver.rtol}, {"atol", m.solver.atol}, {"h_fixed", m.solver.h_fixed},
+                  {"h_max", m.solver.h_max}, {"h_min", m.solver.h_min},
+                  {"h_initial", m.solver.h_initial}, {"event_tol", m.solver.event_tol},
+                  {"max_steps", m.solver.max_steps}}},
+      {"fall", {{"min_height", m.fall_min_height}, {"max_tilt_deg", m.fall_max_tilt / kDeg}}}};
+  return j;
+}
+
+}  // namespace pronk::io

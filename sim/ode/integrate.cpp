@@ -1,0 +1,123 @@
+// The event-aware integration driver.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "sim/ode/solver.hpp"
+
+namespace pronk::ode {
+namespace {
+
+/// Crossing sign of an event over a step: -1 falling, +1 rising, 0 none.
+/// Falling: g_prev > 0 and g_new <= 0; rising: g_prev < 0 and g_new >= 0.
+int crossing(int direction, double g_prev, double g_new) {
+  if (direction <= 0 && g_prev > 0.0 && g_new <= 0.0) return -1;
+  if (direction >= 0 && g_prev < 0.0 && g_new >= 0.0) return +1;
+  return 0;
+}
+
+/// Locates the crossing of `event` inside [a, b] on the stepper's dense output
+/// with the Illinois method (safeguarded by bisection when progress stalls).
+/// g_a is strictly on the pre-crossing side, g_b on the post side (sign `dir`).
+/// Returns the post-side end of a final bracket no wider than tol [s].
+double locate(const EventFunction& event, const Stepper& stepper, int dir, double a, double g_a,
+              double b, double g_b, double tol, Vec& y) {
+  auto is_post = [dir](double g) { return dir < 0 ? g <= 0.0 : g >= 0.0; };
+  int last_side = 0;  // +1: b moved last, -1: a moved last
+  bool bisect_next = false;
+  for (int iter = 0; iter < 400 && b - a > tol; ++iter) {
+    const double width = b - a;
+    double t = 0.5 * (a + b);
+    if (!bisect_next) {
+      const double ts = b - g_b * (b - a) / (g_b - g_a);
+      // Keep the trial strictly inside so the bracket always shrinks.
+      const double margin = 0.25 * tol;
+      if (std::isfinite(ts)) t = std::clamp(ts, a + margin, b - margin);
+    }
+    if (!(t > a && t < b)) break;  // no representable point inside the bracket
+    stepper.dense(t, y);
+    const double g = event.value(t, y);
+    if (is_post(g)) {
+      b = t;
+      g_b = g;
+      if (last_side == +1) g_a *= 0.5;  // Illinois: damp the stale end
+      last_side = +1;
+    } else {
+      a = t;
+      g_a = g;
+      if (last_side == -1) g_b *= 0.5;
+      last_side = -1;
+    }
+    bisect_next = (b - a) > 0.5 * width;
+  }
+  return b;
+}
+
+}  // namespace
+
+IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
+                          std::span<const EventFunction* const> events,
+                          const SolverOptions& options, StepObserver* observer) {
+  IntegrateResult result;
+  result.t = stepper.t();
+  const std::size_t ne = events.size();
+  std::vector<double> g_prev(ne), g_new(ne);
+  Vec y_event(sys.dimension());
+  for (std::size_t i = 0; i < ne; ++i) g_prev[i] = events[i]->value(stepper.t(), stepper.y());
+
+  const SolverCounters& c = stepper.counters();
+  const long attempts_at_start = c.steps_accepted + c.steps_rejected;
+  while (stepper.t() < t_end) {
+    if (c.steps_accepted + c.steps_rejected - attempts_at_start >= options.max_steps) {
+      result.reason = StopReason::kMaxSteps;
+      result.t = stepper.t();
+      return result;
+    }
+    const StepStatus status = stepper.step(sys, t_end);
+    if (status != StepStatus::kOk) {
+      result.reason =
+          status == StepStatus::kNonFinite ? StopReason::kNonFinite : StopReason::kStepSizeCollapse;
+      result.t = stepper.t();
+      return result;
+    }
+    const double t0 = stepper.t_prev();
+    const double t1 = stepper.t();
+    int fired = -1;
+    double t_fire = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < ne; ++i) {
+      g_new[i] = events[i]->value(t1, stepper.y());
+      if (!std::isfinite(g_new[i])) {  // never let a NaN event pass silently
+        result.reason = StopReason::kNonFinite;
+        result.event_index = static_cast<int>(i);
+        result.t = t1;
+        return result;
+      }
+      const int dir = crossing(events[i]->direction(), g_prev[i], g_new[i]);
+      if (dir == 0) continue;
+      const double te =
+          locate(*events[i], stepper, dir, t0, g_prev[i], t1, g_new[i], options.event_tol, y_event);
+      if (te < t_fire) {
+        t_fire = te;
+        fired = static_cast<int>(i);
+      }
+    }
+    if (fired >= 0) {
+      if (observer != nullptr) observer->on_step(stepper, t_fire);
+      stepper.dense(t_fire, y_event);
+      stepper.reset(sys, t_fire, y_event);
+      ++stepper.mutable_counters().events;
+      result.reason = StopReason::kEvent;
+      result.event_index = fired;
+      result.t = t_fire;
+      return result;
+    }
+    if (observer != nullptr) observer->on_step(stepper, t1);
+    g_prev.swap(g_new);
+  }
+  result.reason = StopReason::kReachedEnd;
+  result.t = stepper.t();
+  return result;
+}
+
+}  // namespace pronk::ode

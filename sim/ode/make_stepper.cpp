@@ -1,0 +1,12 @@
+// make_stepper(): dispatch on the method to the concrete steppers.
+#include "sim/ode/solver.hpp"
+#include "sim/ode/steppers.hpp"
+
+namespace pronk::ode {
+
+std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n) {
+  if (options.method == Method::kDopri5) return detail::make_dopri5_stepper(options, n);
+  return detail::make_explicit_rk_stepper(options, n);
+}
+
+}  // namespace pronk::ode

@@ -1,0 +1,109 @@
+// ODE solvers behind one interface: options, counters, the stepper and the
+// event-aware integration driver.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "sim/ode/ode_system.hpp"
+
+namespace pronk::ode {
+
+/// The integration methods pronk offers.
+enum class Method {
+  kEuler,   ///< explicit Euler, fixed step, order 1
+  kRk2,     ///< explicit midpoint (RK2), fixed step, order 2
+  kRk4,     ///< classic Runge-Kutta, fixed step, order 4
+  kDopri5,  ///< Dormand-Prince 5(4), adaptive, 4th-order dense output
+};
+
+/// "euler", "rk2", "rk4", "dopri5".
+std::string_view to_string(Method m);
+/// Parses the names of to_string; returns false on an unknown name.
+bool parse_method(std::string_view name, Method* out);
+/// True for methods with error control (step size adapted).
+bool is_adaptive(Method m);
+
+/// How to integrate. Defaults suit the reduced models.
+struct SolverOptions {
+  Method method = Method::kDopri5;
+  double rtol = 1e-9;       ///< relative tolerance (adaptive methods)
+  double atol = 1e-9;       ///< absolute tolerance (adaptive methods)
+  double h_fixed = 1e-3;    ///< step [s] of the fixed-step methods
+  double h_initial = 0.0;   ///< first trial step [s] of adaptive methods; 0 = automatic
+  double h_max = 0.1;       ///< largest step [s]
+  double h_min = 1e-13;     ///< adaptive step below this is a step-size collapse [s]
+  double event_tol = 1e-13; ///< event time tolerance [s]
+  long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
+
+  /// Checks every field; on failure writes "field: value: rule" into *error.
+  bool validate(std::string* error) const;
+};
+
+/// Cost counters of a run; accumulated over restarts.
+struct SolverCounters {
+  long steps_accepted = 0;
+  long steps_rejected = 0;
+  long rhs_evaluations = 0;
+  long events = 0;
+};
+
+/// Outcome of one step attempt.
+enum class StepStatus { kOk, kStepSizeCollapse, kNonFinite };
+
+/// A one-step solver with dense output over its last accepted step.
+/// Usage: reset(t0, y0) -> repeatedly step() -> dense() inside [t_prev(), t()].
+/// reset() may be called many times (at every touchdown/liftoff): adaptive
+/// solvers keep their adapted step size across resets.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// Restarts at (t, y), e.g. after an impulse changed y. Keeps the adapted step.
+  virtual void reset(const OdeSystem& sys, double t, const Vec& y) = 0;
+  /// Advances one accepted step, never beyond t_limit (> t()). Rejected
+  /// attempts are retried internally and counted.
+  virtual StepStatus step(const OdeSystem& sys, double t_limit) = 0;
+  /// Interpolates y at t in [t_prev(), t()] with the method's dense output.
+  virtual void dense(double t, Vec& y_out) const = 0;
+  virtual double t() const = 0;
+  virtual double t_prev() const = 0;
+  virtual const Vec& y() const = 0;
+  /// Step size the next step() will try [s].
+  virtual double h() const = 0;
+  virtual const SolverCounters& counters() const = 0;
+  /// Mutable counters (integrate() counts located events here).
+  virtual SolverCounters& mutable_counters() = 0;
+};
+
+/// Creates the stepper of options.method for systems of dimension n.
+std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
+
+/// Why integrate() returned.
+enum class StopReason { kReachedEnd, kEvent, kStepSizeCollapse, kNonFinite, kMaxSteps };
+
+struct IntegrateResult {
+  StopReason reason = StopReason::kReachedEnd;
+  int event_index = -1;  ///< index into events when reason == kEvent
+  double t = 0.0;        ///< time reached (event time when reason == kEvent)
+};
+
+/// Integrates from the stepper's current (t, y) until t_end or until the first
+/// event fires (earliest in time, located on the dense output by a bracketing
+/// root finder to options.event_tol). On an event the stepper is reset to the
+/// event point (t_event, y(t_event)) so the caller can modify the state and
+/// reset again. `on_step` (optional) is called after every accepted step with
+/// the stepper, e.g. to sample output on a fixed grid via dense().
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  /// Called after each accepted step; dense() is valid on [t_prev(), t_stop].
+  virtual void on_step(const Stepper& stepper, double t_stop) = 0;
+};
+
+IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
+                          std::span<const EventFunction* const> events,
+                          const SolverOptions& options, StepObserver* observer = nullptr);
+
+}  // namespace pronk::ode

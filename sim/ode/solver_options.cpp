@@ -1,0 +1,77 @@
+// Method names and SolverOptions::validate().
+#include <cmath>
+#include <cstdio>
+
+#include "sim/ode/solver.hpp"
+
+namespace pronk::ode {
+
+std::string_view to_string(Method m) {
+  switch (m) {
+    case Method::kEuler:
+      return "euler";
+    case Method::kRk2:
+      return "rk2";
+    case Method::kRk4:
+      return "rk4";
+    case Method::kDopri5:
+      return "dopri5";
+  }
+  return "unknown";
+}
+
+bool parse_method(std::string_view name, Method* out) {
+  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5}) {
+    if (name == to_string(m)) {
+      *out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool is_adaptive(Method m) { return m == Method::kDopri5; }
+
+namespace {
+
+/// Writes "field: value: rule" into *error (if non-null) and returns false.
+bool fail(std::string* error, const char* field, double value, const char* rule) {
+  if (error != nullptr) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", value);
+    *error = std::string(field) + ": " + buf + ": " + rule;
+  }
+  return false;
+}
+
+/// Checks value > 0 and finite.
+bool positive_finite(std::string* error, const char* field, double value) {
+  if (!(value > 0.0)) return fail(error, field, value, "must be > 0");
+  if (!std::isfinite(value)) return fail(error, field, value, "must be finite");
+  return true;
+}
+
+}  // namespace
+
+bool SolverOptions::validate(std::string* error) const {
+  if (to_string(method) == "unknown") {
+    return fail(error, "method", static_cast<double>(static_cast<int>(method)),
+                "must be one of euler, rk2, rk4, dopri5");
+  }
+  if (!positive_finite(error, "rtol", rtol)) return false;
+  if (!positive_finite(error, "atol", atol)) return false;
+  if (!positive_finite(error, "h_fixed", h_fixed)) return false;
+  if (!(h_initial >= 0.0)) return fail(error, "h_initial", h_initial, "must be >= 0");
+  if (!std::isfinite(h_initial)) return fail(error, "h_initial", h_initial, "must be finite");
+  if (!(h_max > 0.0)) return fail(error, "h_max", h_max, "must be > 0");
+  if (!(h_min >= 0.0)) return fail(error, "h_min", h_min, "must be >= 0");
+  if (!(h_min < h_max)) return fail(error, "h_min", h_min, "must be < h_max");
+  if (!positive_finite(error, "event_tol", event_tol)) return false;
+  if (max_steps <= 0) {
+    return fail(error, "max_steps", static_cast<double>(max_steps), "must be > 0");
+  }
+  if (error != nullptr) error->clear();
+  return true;
+}
+
+}  // namespace pronk::ode

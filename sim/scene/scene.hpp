@@ -1,0 +1,124 @@
+// The robot scene: one description of a ballistic running robot (body, legs,
+// controller, setpoint, initial state, disturbances, simulation settings) that
+// every model simulates. Built by io::load_scene; immutable once built.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/control/allocation.hpp"
+#include "sim/math/rotation.hpp"
+#include "sim/ode/solver.hpp"
+
+namespace pronk::scene {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+/// Which model simulates the scene.
+enum class ModelKind { kImpulse, kPulse };
+std::string_view to_string(ModelKind k);
+
+/// Attitude integration: exact quaternion kinematics, or the seed's small-angle
+/// formulation (1-2-3 Euler angles integrated as if they were body-rate integrals).
+enum class AttitudeFormulation { kQuaternion, kSmallAngleEuler123 };
+
+/// Rigid body mass properties.
+struct Body {
+  double mass = 1.5;  ///< [kg]
+  /// Inertia tensor about the CoM in the body frame [kg m^2] (symmetric positive
+  /// definite, satisfying the triangle inequalities of its principal moments).
+  Mat3 inertia = Vec3(0.0074, 0.0106, 0.0164).asDiagonal();
+};
+
+/// Legs: none (body-only: one virtual leg at the CoM that can push any P and H)
+/// or telescoping legs with rotary hips that push along the leg only (no body-y).
+struct Legs {
+  bool body_only = true;
+  std::vector<Vec3> hips;        ///< hip positions relative to the CoM, body frame [m]
+  std::vector<bool> disabled;    ///< per hip: failed leg, never used
+  double length = 0.25;          ///< touchdown when the CoM falls through this height [m]
+};
+
+/// Gait: which legs push at a stride.
+enum class Gait {
+  kPronk,  ///< all working legs every stride
+  kAlternate,  ///< trot/bound: alternates between gait_groups[0] and gait_groups[1]
+};
+
+/// The body controller: PD per axis + hop-height law + moving setpoint + banking.
+struct Controller {
+  /// Proportional gains for (x, y, z, roll, pitch, yaw) [N s/m, N s/m, -, N m s/rad ...].
+  Vec6 kp = Vec6::Zero();
+  /// Derivative gains for (x, y, z, roll, pitch, yaw) [kg, kg, kg, kg m^2 ...].
+  Vec6 kd = Vec6::Zero();
+  double hop_height = 0.2;  ///< desired apex height above touchdown height h [m]
+  Vec3 setpoint_position = Vec3::Zero();  ///< x_d0 at t = 0 [m] (z unused)
+  Vec3 setpoint_velocity = Vec3::Zero();  ///< v_d [m/s] (z unused)
+  double setpoint_yaw = 0.0;              ///< desired heading [rad]
+  /// Banking (legged only): desired roll = -clamp(kp e_y + kd e_vy, ±max_roll),
+  /// world y errors expressed in the heading frame.
+  bool bank_enabled = false;
+  double bank_kp = 0.0;       ///< [rad/m]
+  double bank_kd = 0.0;       ///< [rad s/m]
+  double bank_max_roll = 0.35;  ///< [rad]
+  control::AllocationOptions allocation;
+  Gait gait = Gait::kPronk;
+  std::vector<std::vector<int>> gait_groups;  ///< leg index groups for kAlternate
+};
+
+/// Pulse model settings (seed 2.6).
+enum class PulseMode { kMaxForce, kDuration };
+struct Pulse {
+  PulseMode mode = PulseMode::kMaxForce;
+  double max_force = 60.0;   ///< per-leg force limit in max_force mode [N]
+  double duration = 0.05;    ///< stance duration T in duration mode [s]
+  bool gravity_compensation = true;  ///< add m g T to the vertical impulse (seed 2.6.1)
+};
+
+/// Initial state.
+struct Initial {
+  Vec3 position = Vec3(0, 0, 0.3);  ///< CoM [m]
+  Vec3 velocity = Vec3::Zero();     ///< CoM velocity [m/s]
+  math::Quat attitude = math::Quat::Identity();
+  Vec3 angular_velocity = Vec3::Zero();  ///< body frame [rad/s]
+};
+
+/// An instantaneous disturbance: a velocity kick at a given time.
+struct Disturbance {
+  double time = 0.0;                 ///< [s]
+  Vec3 linear_impulse = Vec3::Zero();   ///< world frame [N s]
+  Vec3 angular_impulse = Vec3::Zero();  ///< body frame [N m s]
+};
+
+/// Run settings.
+struct Simulation {
+  double duration = 10.0;         ///< simulated time [s]
+  long max_strides = 1000000;     ///< stop after this many touchdowns
+  double sample_interval = 0.005; ///< trajectory output interval [s]
+  ode::SolverOptions solver;
+  double fall_min_height = 0.0;   ///< CoM below this is a fall [m]; default 0.4 * leg length
+  double fall_max_tilt = 1.0471975511965976;  ///< tilt of body z from vertical that is a fall [rad]
+};
+
+struct Scene {
+  std::string name = "scene";
+  ModelKind model = ModelKind::kImpulse;
+  double gravity = 9.81;  ///< [m/s^2]
+  AttitudeFormulation attitude = AttitudeFormulation::kQuaternion;
+  Body body;
+  Legs legs;
+  Controller controller;
+  Pulse pulse;
+  Initial initial;
+  std::vector<Disturbance> disturbances;  ///< sorted by time
+  Simulation simulation;
+};
+
+/// Seed gains (A.1): Kp = 1.0 (m, m, 0, Ixx, Iyy, Izz), Kd = 1.5 (m, m, m/1.5, Ixx, Iyy, Izz).
+void seed_gains(const Body& body, Vec6* kp, Vec6* kd);
+
+}  // namespace pronk::scene
