@@ -144,7 +144,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   std::vector<StrideRecord>& strides = result.strides;
   StrideRecord current;  // the stride in progress
   bool have_stride = false;
-  long touchdowns = 0;
+  long touchdowns = 0;        // strides begun
+  long touchdown_events = 0;  // located touchdowns, including one that ends the run
 
   double t = 0.0;
   bool stance = false;
@@ -236,6 +237,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       result.monitors.max_event_residual =
           std::max(result.monitors.max_event_residual, std::abs(y[2] - scene.legs.length));
       finish_stride(t);
+      ++touchdown_events;
       if (touchdowns >= sim.max_strides) {
         running = false;
         break;
@@ -325,7 +327,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
                         : "reached t = " + fmt(t) + " s";
   }
   result.cost.solver = stepper->counters();
-  result.cost.touchdowns = touchdowns;
+  result.cost.touchdowns = touchdown_events;
   result.cost.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;

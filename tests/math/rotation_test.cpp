@@ -167,7 +167,7 @@ TEST_CASE("Near gimbal lock: finite angles reproducing the matrix", "[rotation]"
   }
 }
 
-TEST_CASE("matrix_to_euler is robust to rounding and keeps (-pi, pi]", "[rotation]") {
+TEST_CASE("matrix_to_euler is robust to rounding and keeps angles within (-pi, pi)", "[rotation]") {
   // Entries slightly outside [-1, 1].
   Mat3 R = Mat3::Identity() * (1.0 + 4e-16);
   for (EulerSet set : {EulerSet::k123, EulerSet::k313}) {
