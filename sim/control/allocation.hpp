@@ -50,11 +50,11 @@ enum class AllocationStatus {
 
 struct AllocationResult {
   AllocationStatus status = AllocationStatus::kOk;
-  std::string message;            ///< human-readable reason when status != kOk
-  std::vector<Vec3> leg_impulse;  ///< per leg (inactive legs get zero), body frame [N s]
-  Vec3 produced_P = Vec3::Zero(); ///< Σ p_i [N s]
-  Vec3 produced_H = Vec3::Zero(); ///< Σ r_i × p_i [N m s]
-  double relative_residual = 0.0; ///< |(P,H) - produced| / max(|(P,H)|, tiny)
+  std::string message;             ///< human-readable reason when status != kOk
+  std::vector<Vec3> leg_impulse;   ///< per leg (inactive legs get zero), body frame [N s]
+  Vec3 produced_P = Vec3::Zero();  ///< Σ p_i [N s]
+  Vec3 produced_H = Vec3::Zero();  ///< Σ r_i × p_i [N m s]
+  double relative_residual = 0.0;  ///< |(P,H) - produced| / max(|(P,H)|, tiny)
 };
 
 /// Allocates (P, H) [N s, N m s], body frame, among the legs. Pure function:

@@ -29,7 +29,8 @@ BodyCommand PdBodyController::command(double t, const BodyState& s) const {
   c.P_world.y() = kp[1] * e.y() + kd[1] * ev.y();
   // Hop-height law (seed 2.4.1): Kd_z = m and setpoint sqrt(2 g h) make the next
   // apex exactly h above the touchdown height.
-  c.P_world.z() = kp[2] * (leg_length_ - s.position.z()) + kd[2] * (takeoff_speed_ - s.velocity.z());
+  c.P_world.z() =
+      kp[2] * (leg_length_ - s.position.z()) + kd[2] * (takeoff_speed_ - s.velocity.z());
 
   // Desired attitude: level at the setpoint heading; banking turns the lateral
   // error (in the heading frame) into a roll: legs push along body z, so a
@@ -39,8 +40,8 @@ BodyCommand PdBodyController::command(double t, const BodyState& s) const {
   if (bank_) {
     const double e_lat = -std::sin(yaw) * e.x() + std::cos(yaw) * e.y();
     const double ev_lat = -std::sin(yaw) * ev.x() + std::cos(yaw) * ev.y();
-    roll_d = -std::clamp(config_.bank_kp * e_lat + config_.bank_kd * ev_lat,
-                         -config_.bank_max_roll, config_.bank_max_roll);
+    roll_d = -std::clamp(config_.bank_kp * e_lat + config_.bank_kd * ev_lat, -config_.bank_max_roll,
+                         config_.bank_max_roll);
   }
   c.desired_euler123 = Vector3d(roll_d, 0.0, yaw);
   Vector3d e_att;

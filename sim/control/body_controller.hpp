@@ -31,8 +31,8 @@ class BodyController {
 /// (exact), or theta_d - theta (small-angle formulation, seed A.1).
 class PdBodyController final : public BodyController {
  public:
-  PdBodyController(const scene::Controller& config, double gravity, double leg_length,
-                   bool legged, bool small_angle);
+  PdBodyController(const scene::Controller& config, double gravity, double leg_length, bool legged,
+                   bool small_angle);
   BodyCommand command(double t, const BodyState& s) const override;
 
  private:

@@ -8,8 +8,8 @@
 namespace pronk::control {
 
 struct BodyState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< CoM, world [m]
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< CoM velocity, world [m/s]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();            ///< CoM, world [m]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();            ///< CoM velocity, world [m/s]
   Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  ///< body -> world
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();        ///< body -> world
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< angular velocity, body frame [rad/s]

@@ -16,7 +16,8 @@ std::vector<LegSlot> active_legs(const scene::Scene& scene, long stride) {
   }
   if (scene.controller.gait == scene::Gait::kAlternate && !scene.controller.gait_groups.empty()) {
     const auto& group =
-        scene.controller.gait_groups[static_cast<size_t>(stride) % scene.controller.gait_groups.size()];
+        scene.controller
+            .gait_groups[static_cast<size_t>(stride) % scene.controller.gait_groups.size()];
     for (size_t i = 0; i < slots.size(); ++i) {
       if (std::find(group.begin(), group.end(), static_cast<int>(i)) == group.end()) {
         slots[i].active = false;
@@ -29,8 +30,7 @@ std::vector<LegSlot> active_legs(const scene::Scene& scene, long stride) {
 namespace {
 
 // Allocates the body-frame request and fills the plan's leg impulses.
-void allocate_into(const scene::Scene& scene, const std::vector<LegSlot>& slots,
-                   StancePlan& plan) {
+void allocate_into(const scene::Scene& scene, const std::vector<LegSlot>& slots, StancePlan& plan) {
   if (scene.legs.body_only) {
     // One virtual leg at the CoM that pushes any P and H.
     plan.leg_impulse.assign(1, plan.P_body);
@@ -42,8 +42,8 @@ void allocate_into(const scene::Scene& scene, const std::vector<LegSlot>& slots,
   plan.leg_impulse = std::move(r.leg_impulse);
   plan.allocation_status = r.status;
   plan.allocation_message = std::move(r.message);
-  plan.active_legs = static_cast<int>(std::count_if(slots.begin(), slots.end(),
-                                                    [](const LegSlot& l) { return l.active; }));
+  plan.active_legs = static_cast<int>(
+      std::count_if(slots.begin(), slots.end(), [](const LegSlot& l) { return l.active; }));
 }
 
 }  // namespace
@@ -55,7 +55,8 @@ StancePlan plan_stance(const StanceContext& ctx, long stride, double t, const Bo
   const std::vector<LegSlot> slots =
       scene.legs.body_only ? std::vector<LegSlot>{} : active_legs(scene, stride);
   const double mg = scene.body.mass * scene.gravity;
-  const bool compensate = scene.model == scene::ModelKind::kPulse && scene.pulse.gravity_compensation;
+  const bool compensate =
+      scene.model == scene::ModelKind::kPulse && scene.pulse.gravity_compensation;
 
   // The stance duration may depend on the allocation (max_force mode) and the
   // compensation on the duration: iterate the fixed point T = T(alloc(P + m g T e_z)).
@@ -84,7 +85,8 @@ StancePlan plan_stance(const StanceContext& ctx, long stride, double t, const Bo
     for (size_t i = 0; i < plan.leg_impulse.size(); ++i) {
       plan.leg_force[i] = ctx.legs.force(plan.leg_impulse[i], T);
       plan.net_force_body += plan.leg_force[i];
-      if (!scene.legs.body_only) plan.net_moment_body += scene.legs.hips[i].cross(plan.leg_force[i]);
+      if (!scene.legs.body_only)
+        plan.net_moment_body += scene.legs.hips[i].cross(plan.leg_force[i]);
     }
     if (scene.legs.body_only) plan.net_moment_body = plan.H_body / T;
   }

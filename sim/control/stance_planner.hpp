@@ -13,13 +13,15 @@
 namespace pronk::control {
 
 struct StancePlan {
-  BodyCommand command;               ///< what the body controller asked for
-  Eigen::Vector3d P_body = Eigen::Vector3d::Zero();  ///< net linear impulse handed to the legs, body [N s]
-  Eigen::Vector3d H_body = Eigen::Vector3d::Zero();  ///< net angular impulse handed to the legs, body [N m s]
-  double gravity_compensation = 0.0; ///< m g T added to the vertical impulse [N s]
-  double duration = 0.0;             ///< stance duration T [s]; 0 = instantaneous
-  std::vector<Eigen::Vector3d> leg_impulse;  ///< per leg, body frame [N s]
-  std::vector<Eigen::Vector3d> leg_force;    ///< per leg, body frame [N] (pulse)
+  BodyCommand command;  ///< what the body controller asked for
+  Eigen::Vector3d P_body =
+      Eigen::Vector3d::Zero();  ///< net linear impulse handed to the legs, body [N s]
+  Eigen::Vector3d H_body =
+      Eigen::Vector3d::Zero();        ///< net angular impulse handed to the legs, body [N m s]
+  double gravity_compensation = 0.0;  ///< m g T added to the vertical impulse [N s]
+  double duration = 0.0;              ///< stance duration T [s]; 0 = instantaneous
+  std::vector<Eigen::Vector3d> leg_impulse;                   ///< per leg, body frame [N s]
+  std::vector<Eigen::Vector3d> leg_force;                     ///< per leg, body frame [N] (pulse)
   Eigen::Vector3d net_force_body = Eigen::Vector3d::Zero();   ///< Σ leg forces [N]
   Eigen::Vector3d net_moment_body = Eigen::Vector3d::Zero();  ///< Σ r_i × F_i [N m]
   AllocationStatus allocation_status = AllocationStatus::kOk;

@@ -3,8 +3,8 @@
 namespace pronk::io {
 
 namespace {
-std::string format(const std::string& file, const std::string& pointer,
-                   const std::string& expected, const std::string& found) {
+std::string format(const std::string& file, const std::string& pointer, const std::string& expected,
+                   const std::string& found) {
   std::string where = file.empty() ? "<input>" : file;
   where += ": ";
   where += pointer.empty() ? "/" : pointer;

@@ -136,8 +136,7 @@ long JsonReader::integer_or(const std::string& key, long fallback, long lo, long
     return fallback;
   }
   const json& v = get(key);
-  std::string expected =
-      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (!v.is_number_integer()) {
     // Accept 3.0 style numbers that are exact integers.
     if (v.is_number_float()) {
@@ -239,8 +238,8 @@ std::vector<long> JsonReader::integer_array_or(const std::string& key, long lo, 
 
 Eigen::MatrixXd JsonReader::matrix(const std::string& key, int rows, int cols) {
   const json& v = get(key);
-  const std::string expected = "an array of " + std::to_string(rows) + " rows of " +
-                               std::to_string(cols) + " numbers";
+  const std::string expected =
+      "an array of " + std::to_string(rows) + " rows of " + std::to_string(cols) + " numbers";
   if (!v.is_array() || static_cast<int>(v.size()) != rows) throw error(key, expected, describe(v));
   Eigen::MatrixXd m(rows, cols);
   for (int i = 0; i < rows; ++i) {
@@ -259,11 +258,12 @@ Eigen::MatrixXd JsonReader::matrix(const std::string& key, int rows, int cols) {
 }
 
 std::vector<Eigen::Vector3d> JsonReader::vec3_list(const std::string& key, size_t min_n,
-                                                    size_t max_n) {
+                                                   size_t max_n) {
   const json& v = get(key);
-  const std::string expected = "an array of " + std::to_string(min_n) + ".." +
-                               std::to_string(max_n) + " points [x, y, z]";
-  if (!v.is_array() || v.size() < min_n || v.size() > max_n) throw error(key, expected, describe(v));
+  const std::string expected =
+      "an array of " + std::to_string(min_n) + ".." + std::to_string(max_n) + " points [x, y, z]";
+  if (!v.is_array() || v.size() < min_n || v.size() > max_n)
+    throw error(key, expected, describe(v));
   Eigen::MatrixXd m = matrix(key, static_cast<int>(v.size()), 3);
   std::vector<Eigen::Vector3d> out;
   for (int i = 0; i < m.rows(); ++i) out.emplace_back(m.row(i).transpose());

@@ -53,44 +53,43 @@ json run_summary_json(const scene::Scene& scene, const reduced::RunResult& run,
   json warnings = json::object();
   for (const auto& [k, v] : run.warnings) warnings[k] = v;
   const auto& c = run.cost.solver;
-  return {
-      {"scene", scene.name},
-      {"model", std::string(scene::to_string(scene.model))},
-      {"status", std::string(reduced::to_string(run.status))},
-      {"reason", run.reason},
-      {"t_end", run.t_end},
-      {"metrics",
-       {{"strides", m.strides},
-        {"final_x_error_m", m.final_x_error},
-        {"final_y_error_m", m.final_y_error},
-        {"final_roll_deg", m.final_roll * kRadToDeg},
-        {"final_pitch_deg", m.final_pitch * kRadToDeg},
-        {"max_apex_error_m", m.max_apex_error},
-        {"last_apex_error_m", m.last_apex_error},
-        {"mean_duty_cycle", m.mean_duty},
-        {"max_duty_cycle", m.max_duty},
-        {"max_tilt_deg", m.max_tilt * kRadToDeg},
-        {"peak_leg_force_N", m.peak_leg_force},
-        {"mean_impulse_per_stride_Ns", m.mean_impulse_per_stride},
-        {"settle_strides", m.settle_strides}}},
-      {"cost",
-       {{"steps_accepted", c.steps_accepted},
-        {"steps_rejected", c.steps_rejected},
-        {"rhs_evaluations", c.rhs_evaluations},
-        {"events", c.events},
-        {"touchdowns", run.cost.touchdowns},
-        {"wall_time_s", run.cost.wall_time}}},
-      {"monitors",
-       {{"max_event_residual_m", run.monitors.max_event_residual},
-        {"max_flight_energy_drift", run.monitors.max_flight_energy_drift},
-        {"max_quaternion_norm_error", run.monitors.max_quaternion_norm_error}}},
-      {"warnings", warnings},
-      {"solver",
-       {{"method", std::string(ode::to_string(scene.simulation.solver.method))},
-        {"rtol", scene.simulation.solver.rtol},
-        {"atol", scene.simulation.solver.atol}}},
-      {"version", PRONK_VERSION},
-      {"commit", PRONK_GIT_COMMIT}};
+  return {{"scene", scene.name},
+          {"model", std::string(scene::to_string(scene.model))},
+          {"status", std::string(reduced::to_string(run.status))},
+          {"reason", run.reason},
+          {"t_end", run.t_end},
+          {"metrics",
+           {{"strides", m.strides},
+            {"final_x_error_m", m.final_x_error},
+            {"final_y_error_m", m.final_y_error},
+            {"final_roll_deg", m.final_roll * kRadToDeg},
+            {"final_pitch_deg", m.final_pitch * kRadToDeg},
+            {"max_apex_error_m", m.max_apex_error},
+            {"last_apex_error_m", m.last_apex_error},
+            {"mean_duty_cycle", m.mean_duty},
+            {"max_duty_cycle", m.max_duty},
+            {"max_tilt_deg", m.max_tilt * kRadToDeg},
+            {"peak_leg_force_N", m.peak_leg_force},
+            {"mean_impulse_per_stride_Ns", m.mean_impulse_per_stride},
+            {"settle_strides", m.settle_strides}}},
+          {"cost",
+           {{"steps_accepted", c.steps_accepted},
+            {"steps_rejected", c.steps_rejected},
+            {"rhs_evaluations", c.rhs_evaluations},
+            {"events", c.events},
+            {"touchdowns", run.cost.touchdowns},
+            {"wall_time_s", run.cost.wall_time}}},
+          {"monitors",
+           {{"max_event_residual_m", run.monitors.max_event_residual},
+            {"max_flight_energy_drift", run.monitors.max_flight_energy_drift},
+            {"max_quaternion_norm_error", run.monitors.max_quaternion_norm_error}}},
+          {"warnings", warnings},
+          {"solver",
+           {{"method", std::string(ode::to_string(scene.simulation.solver.method))},
+            {"rtol", scene.simulation.solver.rtol},
+            {"atol", scene.simulation.solver.atol}}},
+          {"version", PRONK_VERSION},
+          {"commit", PRONK_GIT_COMMIT}};
 }
 
 std::string trajectory_csv(const reduced::RunResult& run) {
@@ -99,10 +98,10 @@ std::string trajectory_csv(const reduced::RunResult& run) {
   out.reserve(out.size() + run.trajectory.size() * 200);
   for (const auto& s : run.trajectory) {
     const Eigen::Vector3d a = s.euler123 * kRadToDeg;
-    row(out, {s.t, s.position.x(), s.position.y(), s.position.z(), s.velocity.x(),
-              s.velocity.y(), s.velocity.z(), a.x(), a.y(), a.z(), s.omega.x(), s.omega.y(),
-              s.omega.z(), s.setpoint.x(), s.setpoint.y(), s.stance ? 1.0 : 0.0,
-              s.leg_force_world.x(), s.leg_force_world.y(), s.leg_force_world.z()});
+    row(out, {s.t, s.position.x(), s.position.y(), s.position.z(), s.velocity.x(), s.velocity.y(),
+              s.velocity.z(), a.x(), a.y(), a.z(), s.omega.x(), s.omega.y(), s.omega.z(),
+              s.setpoint.x(), s.setpoint.y(), s.stance ? 1.0 : 0.0, s.leg_force_world.x(),
+              s.leg_force_world.y(), s.leg_force_world.z()});
   }
   return out;
 }
@@ -115,14 +114,38 @@ std::string strides_csv(const reduced::RunResult& run) {
       "active_legs,allocation_ok\n";
   for (const auto& s : run.strides) {
     const Eigen::Vector3d a = s.euler123 * kRadToDeg;
-    row(out, {static_cast<double>(s.index), s.t_touchdown, s.position.x(), s.position.y(),
-              s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(), a.x(), a.y(),
-              a.z(), s.setpoint.x(), s.setpoint.y(), s.has_apex ? s.apex_height : 0.0,
-              s.stance_duration, s.stride_time, s.duty_cycle, s.P_requested.x(),
-              s.P_requested.y(), s.P_requested.z(), s.H_requested.x(), s.H_requested.y(),
-              s.H_requested.z(), s.P_delivered.x(), s.P_delivered.y(), s.P_delivered.z(),
-              s.H_delivered.x(), s.H_delivered.y(), s.H_delivered.z(), s.gravity_compensation,
-              s.peak_leg_force, static_cast<double>(s.active_legs),
+    row(out, {static_cast<double>(s.index),
+              s.t_touchdown,
+              s.position.x(),
+              s.position.y(),
+              s.position.z(),
+              s.velocity.x(),
+              s.velocity.y(),
+              s.velocity.z(),
+              a.x(),
+              a.y(),
+              a.z(),
+              s.setpoint.x(),
+              s.setpoint.y(),
+              s.has_apex ? s.apex_height : 0.0,
+              s.stance_duration,
+              s.stride_time,
+              s.duty_cycle,
+              s.P_requested.x(),
+              s.P_requested.y(),
+              s.P_requested.z(),
+              s.H_requested.x(),
+              s.H_requested.y(),
+              s.H_requested.z(),
+              s.P_delivered.x(),
+              s.P_delivered.y(),
+              s.P_delivered.z(),
+              s.H_delivered.x(),
+              s.H_delivered.y(),
+              s.H_delivered.z(),
+              s.gravity_compensation,
+              s.peak_leg_force,
+              static_cast<double>(s.active_legs),
               s.allocation == control::AllocationStatus::kOk ? 1.0 : 0.0});
   }
   return out;
@@ -136,7 +159,7 @@ const char* kSvgHeader =
 std::string figure_motion(const std::string& title) {
   return std::string(kSvgHeader) + "set output 'motion.svg'\nset multiplot layout 2,2 title '" +
          title +
-         "'\n"
+         "' noenhanced\n"
          "set title 'Body position'; set xlabel 'time [s]'; set ylabel 'position [m]'\n"
          "plot 'trajectory.csv' u 1:2 w l t 'x', '' u 1:3 w l t 'y', '' u 1:4 w l t 'z', "
          "'' u 1:14 w l dt 2 t 'x_d'\n"

@@ -1,6 +1,7 @@
 #include "sim/io/scene_loader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -25,7 +26,8 @@ std::string number_text(double x) {
 }
 
 // Checks the triangle inequalities of principal moments (a physical body).
-void check_principal_moments(const Eigen::Vector3d& I, const JsonReader& r, const std::string& key) {
+void check_principal_moments(const Eigen::Vector3d& I, const JsonReader& r,
+                             const std::string& key) {
   for (int i = 0; i < 3; ++i) {
     if (!(I[i] > 0.0)) {
       throw r.error(key, "positive principal moments of inertia",
@@ -82,6 +84,9 @@ json read_json_file(const std::string& path) {
     return json::parse(buf.str());
   } catch (const json::parse_error& e) {
     throw InputError(path, "", "valid JSON", std::string("a syntax error: ") + e.what());
+  } catch (const json::exception& e) {
+    // A number beyond the double range (1e400) is out_of_range 406, not a parse_error.
+    throw InputError(path, "", "valid JSON with finite numbers", e.what());
   }
 }
 
@@ -98,6 +103,10 @@ void apply_override(json& doc, const std::string& assignment) {
     value = json::parse(text);
   } catch (const json::parse_error&) {
     value = text;  // a bare word: a string
+  } catch (const json::exception&) {
+    // Valid JSON syntax that nlohmann cannot hold, e.g. the number 1e400.
+    throw InputError("command line (" + where + ")", ptr, "a finite number",
+                     "\"" + text + "\" (number overflow)");
   }
   json::json_pointer jp;
   try {
@@ -105,17 +114,27 @@ void apply_override(json& doc, const std::string& assignment) {
   } catch (const json::exception& e) {
     throw InputError("command line (" + where + ")", ptr, "a valid JSON Pointer", e.what());
   }
-  if (jp.empty()) throw InputError("command line (" + where + ")", ptr, "a pointer below the root", "the root");
+  if (jp.empty())
+    throw InputError("command line (" + where + ")", ptr, "a pointer below the root", "the root");
   const json::json_pointer parent = jp.parent_pointer();
-  if (!doc.contains(parent)) {
-    throw InputError("command line (" + where + ")", ptr, "a pointer whose parent exists in the scene",
+  bool parent_exists = false;
+  try {
+    parent_exists = doc.contains(parent);
+  } catch (const json::exception&) {
+    parent_exists = false;  // e.g. an array index too large for size_t
+  }
+  if (!parent_exists) {
+    throw InputError("command line (" + where + ")", ptr,
+                     "a pointer whose parent exists in the scene",
                      "no value at " + (parent.to_string().empty() ? "/" : parent.to_string()));
   }
   json& p = doc[parent];
   const std::string last = jp.back();
   if (p.is_array()) {
     std::size_t idx = 0;
-    const bool numeric = !last.empty() && std::all_of(last.begin(), last.end(), ::isdigit);
+    const bool numeric =
+        !last.empty() && std::all_of(last.begin(), last.end(),
+                                     [](unsigned char ch) { return std::isdigit(ch) != 0; });
     if (numeric) idx = std::stoul(last.size() > 9 ? std::string("999999999") : last);
     if (!numeric || idx >= p.size()) {
       throw InputError("command line (" + where + ")", ptr,
@@ -140,11 +159,14 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
   const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse"});
   s.model = model == "pulse" ? scene::ModelKind::kPulse : scene::ModelKind::kImpulse;
   s.gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
-  const std::string att = r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
+  const std::string att =
+      r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
   s.attitude = att == "quaternion" ? scene::AttitudeFormulation::kQuaternion
                                    : scene::AttitudeFormulation::kSmallAngleEuler123;
-  if (r.has("body")) s.body = parse_body(r.object("body"));
-  else r.optional("body");
+  if (r.has("body"))
+    s.body = parse_body(r.object("body"));
+  else
+    r.optional("body");
 
   // Legs.
   if (r.has("legs")) {
@@ -159,9 +181,15 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
       throw l.error("hips", "no hips for kind \"body_only\"", "hips");
     }
     s.legs.disabled.assign(s.legs.hips.size(), false);
-    for (long i : l.integer_array_or("disabled", 0, std::max<long>(0, static_cast<long>(s.legs.hips.size()) - 1))) {
-      s.legs.disabled[static_cast<size_t>(i)] = true;
+    const std::vector<long> disabled = l.integer_array_or(
+        "disabled", 0, std::max<long>(0, static_cast<long>(s.legs.hips.size()) - 1));
+    if (s.legs.hips.empty() && !disabled.empty()) {
+      // A body-only robot has no legs to disable (indexing `disabled` would be out of bounds).
+      throw InputError(file, l.pointer_of("disabled") + "/0",
+                       "no disabled legs (kind \"body_only\" has none)",
+                       "number " + std::to_string(disabled[0]));
     }
+    for (long i : disabled) s.legs.disabled[static_cast<size_t>(i)] = true;
     l.finish();
   } else {
     r.optional("legs");
@@ -213,8 +241,10 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
       k.gait = kind == "alternate" ? scene::Gait::kAlternate : scene::Gait::kPronk;
       if (k.gait == scene::Gait::kAlternate) {
         const long n = static_cast<long>(s.legs.hips.size());
-        if (n == 0) throw g.error("kind", "a legged robot for an alternating gait", "body_only legs");
-        if (!g.has("groups")) throw g.error("groups", "leg index groups, e.g. [[0,3],[1,2]]", "nothing");
+        if (n == 0)
+          throw g.error("kind", "a legged robot for an alternating gait", "body_only legs");
+        if (!g.has("groups"))
+          throw g.error("groups", "leg index groups, e.g. [[0,3],[1,2]]", "nothing");
         k.gait_groups = g.index_groups("groups", n - 1);
       } else {
         g.optional("groups");
@@ -251,11 +281,13 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     const std::string set = in.choice_or("euler_set", "123", {"123", "313"});
     if (in.has("attitude_deg")) {
       const Vec3 a = in.vector("attitude_deg", 3, -720.0, 720.0) * kDeg;
-      s.initial.attitude = math::euler_to_quat(a, set == "313" ? math::EulerSet::k313 : math::EulerSet::k123);
+      s.initial.attitude =
+          math::euler_to_quat(a, set == "313" ? math::EulerSet::k313 : math::EulerSet::k123);
     }
     if (in.has("attitude_quaternion")) {
       const Eigen::VectorXd q = in.vector("attitude_quaternion", 4, -1e3, 1e3);
-      if (q.norm() < 1e-9) throw in.error("attitude_quaternion", "a non-zero quaternion [w, x, y, z]", "zero");
+      if (q.norm() < 1e-9)
+        throw in.error("attitude_quaternion", "a non-zero quaternion [w, x, y, z]", "zero");
       s.initial.attitude = math::Quat(q[0], q[1], q[2], q[3]).normalized();
     }
     in.finish();
@@ -321,9 +353,10 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     r.optional("simulation");
   }
   if (!(s.initial.position.z() > s.simulation.fall_min_height)) {
-    throw InputError(file, "/initial/position/2",
-                     "a CoM height above the fall height " + number_text(s.simulation.fall_min_height) + " m",
-                     number_text(s.initial.position.z()));
+    throw InputError(
+        file, "/initial/position/2",
+        "a CoM height above the fall height " + number_text(s.simulation.fall_min_height) + " m",
+        number_text(s.initial.position.z()));
   }
   r.finish();
   return s;
@@ -348,7 +381,8 @@ json scene_to_json(const scene::Scene& s) {
   j["name"] = s.name;
   j["model"] = std::string(scene::to_string(s.model));
   j["gravity"] = s.gravity;
-  j["attitude"] = s.attitude == scene::AttitudeFormulation::kQuaternion ? "quaternion" : "small_angle_euler123";
+  j["attitude"] =
+      s.attitude == scene::AttitudeFormulation::kQuaternion ? "quaternion" : "small_angle_euler123";
   json I = json::array();
   for (int i = 0; i < 3; ++i) I.push_back(vec(s.body.inertia.row(i).transpose()));
   j["body"] = {{"mass", s.body.mass}, {"inertia_tensor", I}};
@@ -371,13 +405,20 @@ json scene_to_json(const scene::Scene& s) {
       {"hop_height", c.hop_height},
       {"kp", vec(c.kp)},
       {"kd", vec(c.kd)},
-      {"setpoint", {{"position", vec(c.setpoint_position)}, {"velocity", vec(c.setpoint_velocity)},
-                    {"yaw_deg", c.setpoint_yaw / kDeg}}},
-      {"bank", {{"enabled", c.bank_enabled}, {"kp", c.bank_kp}, {"kd", c.bank_kd},
-                {"max_roll_deg", c.bank_max_roll / kDeg}}},
-      {"allocation", {{"scheme", c.allocation.scheme == control::AllocationScheme::kSeed ? "seed" : "minimum_norm"},
-                      {"max_leg_impulse", c.allocation.max_leg_impulse},
-                      {"residual_tol", c.allocation.residual_tol}}},
+      {"setpoint",
+       {{"position", vec(c.setpoint_position)},
+        {"velocity", vec(c.setpoint_velocity)},
+        {"yaw_deg", c.setpoint_yaw / kDeg}}},
+      {"bank",
+       {{"enabled", c.bank_enabled},
+        {"kp", c.bank_kp},
+        {"kd", c.bank_kd},
+        {"max_roll_deg", c.bank_max_roll / kDeg}}},
+      {"allocation",
+       {{"scheme",
+         c.allocation.scheme == control::AllocationScheme::kSeed ? "seed" : "minimum_norm"},
+        {"max_leg_impulse", c.allocation.max_leg_impulse},
+        {"residual_tol", c.allocation.residual_tol}}},
       {"gait", gait}};
   j["pulse"] = {{"mode", s.pulse.mode == scene::PulseMode::kDuration ? "duration" : "max_force"},
                 {"max_force", s.pulse.max_force},
@@ -390,7 +431,8 @@ json scene_to_json(const scene::Scene& s) {
                   {"angular_velocity", vec(s.initial.angular_velocity)}};
   json d = json::array();
   for (const auto& x : s.disturbances) {
-    d.push_back({{"time", x.time}, {"linear_impulse", vec(x.linear_impulse)},
+    d.push_back({{"time", x.time},
+                 {"linear_impulse", vec(x.linear_impulse)},
                  {"angular_impulse", vec(x.angular_impulse)}});
   }
   j["disturbances"] = d;
@@ -399,11 +441,16 @@ json scene_to_json(const scene::Scene& s) {
       {"duration", m.duration},
       {"max_strides", m.max_strides},
       {"sample_interval", m.sample_interval},
-      {"solver", {{"method", std::string(ode::to_string(m.solver.method))},
-                  {"rtol", m.solver.rtol}, {"atol", m.solver.atol}, {"h_fixed", m.solver.h_fixed},
-                  {"h_max", m.solver.h_max}, {"h_min", m.solver.h_min},
-                  {"h_initial", m.solver.h_initial}, {"event_tol", m.solver.event_tol},
-                  {"max_steps", m.solver.max_steps}}},
+      {"solver",
+       {{"method", std::string(ode::to_string(m.solver.method))},
+        {"rtol", m.solver.rtol},
+        {"atol", m.solver.atol},
+        {"h_fixed", m.solver.h_fixed},
+        {"h_max", m.solver.h_max},
+        {"h_min", m.solver.h_min},
+        {"h_initial", m.solver.h_initial},
+        {"event_tol", m.solver.event_tol},
+        {"max_steps", m.solver.max_steps}}},
       {"fall", {{"min_height", m.fall_min_height}, {"max_tilt_deg", m.fall_max_tilt / kDeg}}}};
   return j;
 }

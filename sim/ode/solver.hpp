@@ -29,13 +29,13 @@ bool is_adaptive(Method m);
 /// How to integrate. Defaults suit the reduced models.
 struct SolverOptions {
   Method method = Method::kDopri5;
-  double rtol = 1e-9;       ///< relative tolerance (adaptive methods)
-  double atol = 1e-9;       ///< absolute tolerance (adaptive methods)
-  double h_fixed = 1e-3;    ///< step [s] of the fixed-step methods
-  double h_initial = 0.0;   ///< first trial step [s] of adaptive methods; 0 = automatic
-  double h_max = 0.1;       ///< largest step [s]
-  double h_min = 1e-13;     ///< adaptive step below this is a step-size collapse [s]
-  double event_tol = 1e-13; ///< event time tolerance [s]
+  double rtol = 1e-9;          ///< relative tolerance (adaptive methods)
+  double atol = 1e-9;          ///< absolute tolerance (adaptive methods)
+  double h_fixed = 1e-3;       ///< step [s] of the fixed-step methods
+  double h_initial = 0.0;      ///< first trial step [s] of adaptive methods; 0 = automatic
+  double h_max = 0.1;          ///< largest step [s]
+  double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
+  double event_tol = 1e-13;    ///< event time tolerance [s]
   long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
 
   /// Checks every field; on failure writes "field: value: rule" into *error.

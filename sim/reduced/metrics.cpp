@@ -35,17 +35,19 @@ RunMetrics compute_metrics(const scene::Scene& scene, const RunResult& run,
     m.max_tilt = std::max(m.max_tilt, std::acos(std::clamp(R(2, 2), -1.0, 1.0)));
     m.peak_leg_force = std::max(m.peak_leg_force, s.peak_leg_force);
     impulse_sum += s.P_delivered.norm();
-    const bool settled = std::abs(s.position.x() - s.setpoint.x()) < criteria.position_error &&
-                         std::abs(s.position.y() - s.setpoint.y()) < criteria.position_error &&
-                         std::abs(s.euler123.x()) < criteria.tilt &&
-                         std::abs(s.euler123.y()) < criteria.tilt &&
-                         (!s.has_apex || std::abs(s.apex_height - target_apex) < criteria.apex_error);
+    const bool settled =
+        std::abs(s.position.x() - s.setpoint.x()) < criteria.position_error &&
+        std::abs(s.position.y() - s.setpoint.y()) < criteria.position_error &&
+        std::abs(s.euler123.x()) < criteria.tilt && std::abs(s.euler123.y()) < criteria.tilt &&
+        (!s.has_apex || std::abs(s.apex_height - target_apex) < criteria.apex_error);
     if (!settled) last_unsettled = s.index;
   }
   if (complete > 0) m.mean_duty /= static_cast<double>(complete);
-  if (!run.strides.empty()) m.mean_impulse_per_stride = impulse_sum / static_cast<double>(run.strides.size());
+  if (!run.strides.empty())
+    m.mean_impulse_per_stride = impulse_sum / static_cast<double>(run.strides.size());
   const bool ended_well = run.status == RunStatus::kCompleted;
-  if (ended_well && !run.strides.empty() && last_unsettled + 1 < static_cast<long>(run.strides.size())) {
+  if (ended_well && !run.strides.empty() &&
+      last_unsettled + 1 < static_cast<long>(run.strides.size())) {
     m.settle_strides = last_unsettled + 1;
   }
   return m;

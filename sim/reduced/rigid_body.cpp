@@ -61,7 +61,8 @@ void RigidBodyModel::apply_impulse(Vec& y, const Vec3& P_world, const Vec3& H_bo
 double RigidBodyModel::energy(const Vec& y) const {
   const Vec3 v = y.segment<3>(3);
   const Vec3 w = y.segment<3>(layout.omega_index());
-  return 0.5 * mass * v.squaredNorm() + 0.5 * w.dot(inertia * w) - mass * gravity.dot(y.segment<3>(0));
+  return 0.5 * mass * v.squaredNorm() + 0.5 * w.dot(inertia * w) -
+         mass * gravity.dot(y.segment<3>(0));
 }
 
 void RigidBodyModel::normalize(Vec& y) const {

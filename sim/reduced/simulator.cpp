@@ -45,7 +45,8 @@ class ApexEvent final : public ode::EventFunction {
 /// Fall by tilt: the body z axis's vertical component falls through cos(max tilt).
 class TiltEvent final : public ode::EventFunction {
  public:
-  TiltEvent(const Layout& layout, double max_tilt) : layout_(layout), cos_max_(std::cos(max_tilt)) {}
+  TiltEvent(const Layout& layout, double max_tilt)
+      : layout_(layout), cos_max_(std::cos(max_tilt)) {}
   double value(double, const Vec& y) const override {
     double up = 0.0;
     if (layout_.quaternion) {
@@ -122,7 +123,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   RigidBodyRhs rhs(model);
   const bool small_angle = !L.quaternion;
   control::PdBodyController body_controller(scene.controller, scene.gravity, scene.legs.length,
-                                             !scene.legs.body_only, small_angle);
+                                            !scene.legs.body_only, small_angle);
   const auto leg_controller = control::make_leg_controller(scene);
   const control::StanceContext ctx{scene, body_controller, *leg_controller};
 
@@ -152,7 +153,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   double stance_end = 0.0;
   control::StancePlan plan;
   size_t next_disturbance = 0;
-  const double energy_scale = scene.body.mass * scene.gravity * std::max(scene.controller.hop_height, 1e-3);
+  const double energy_scale =
+      scene.body.mass * scene.gravity * std::max(scene.controller.hop_height, 1e-3);
   double flight_energy = model.energy(y);
 
   auto finish_stride = [&](double t_next) {
@@ -191,9 +193,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
     }
     t = r.t;
     y = stepper->y();
-    const int event = r.reason == ode::StopReason::kEvent
-                          ? (stance ? r.event_index + 1 : r.event_index)
-                          : -1;
+    const int event =
+        r.reason == ode::StopReason::kEvent ? (stance ? r.event_index + 1 : r.event_index) : -1;
     switch (r.reason) {
       case ode::StopReason::kStepSizeCollapse:
         end_run(RunStatus::kDiverged, "step-size collapse at t = " + fmt(t) + " s");
@@ -217,7 +218,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       model.normalize(y);
     }
     if (event == kFallLow) {
-      end_run(RunStatus::kFell, "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
+      end_run(RunStatus::kFell,
+              "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
       break;
     }
     if (event == kFallTilt) {
@@ -232,8 +234,9 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       }
     } else if (event == kTouchdown) {
       // Flight energy is conserved (torque-free ballistic flight): monitor it.
-      result.monitors.max_flight_energy_drift = std::max(
-          result.monitors.max_flight_energy_drift, std::abs(model.energy(y) - flight_energy) / energy_scale);
+      result.monitors.max_flight_energy_drift =
+          std::max(result.monitors.max_flight_energy_drift,
+                   std::abs(model.energy(y) - flight_energy) / energy_scale);
       result.monitors.max_event_residual =
           std::max(result.monitors.max_event_residual, std::abs(y[2] - scene.legs.length));
       finish_stride(t);
@@ -252,7 +255,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       current.velocity = s.velocity;
       current.euler123 = s.euler123;
       current.omega = s.omega;
-      current.setpoint = scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
+      current.setpoint =
+          scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
       current.P_requested = plan.command.P_world;
       current.H_requested = plan.command.H_body;
       current.gravity_compensation = plan.gravity_compensation;

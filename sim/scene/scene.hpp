@@ -38,14 +38,14 @@ struct Body {
 /// or telescoping legs with rotary hips that push along the leg only (no body-y).
 struct Legs {
   bool body_only = true;
-  std::vector<Vec3> hips;        ///< hip positions relative to the CoM, body frame [m]
-  std::vector<bool> disabled;    ///< per hip: failed leg, never used
-  double length = 0.25;          ///< touchdown when the CoM falls through this height [m]
+  std::vector<Vec3> hips;      ///< hip positions relative to the CoM, body frame [m]
+  std::vector<bool> disabled;  ///< per hip: failed leg, never used
+  double length = 0.25;        ///< touchdown when the CoM falls through this height [m]
 };
 
 /// Gait: which legs push at a stride.
 enum class Gait {
-  kPronk,  ///< all working legs every stride
+  kPronk,      ///< all working legs every stride
   kAlternate,  ///< trot/bound: alternates between gait_groups[0] and gait_groups[1]
 };
 
@@ -55,15 +55,15 @@ struct Controller {
   Vec6 kp = Vec6::Zero();
   /// Derivative gains for (x, y, z, roll, pitch, yaw) [kg, kg, kg, kg m^2 ...].
   Vec6 kd = Vec6::Zero();
-  double hop_height = 0.2;  ///< desired apex height above touchdown height h [m]
+  double hop_height = 0.2;                ///< desired apex height above touchdown height h [m]
   Vec3 setpoint_position = Vec3::Zero();  ///< x_d0 at t = 0 [m] (z unused)
   Vec3 setpoint_velocity = Vec3::Zero();  ///< v_d [m/s] (z unused)
   double setpoint_yaw = 0.0;              ///< desired heading [rad]
   /// Banking (legged only): desired roll = -clamp(kp e_y + kd e_vy, ±max_roll),
   /// world y errors expressed in the heading frame.
   bool bank_enabled = false;
-  double bank_kp = 0.0;       ///< [rad/m]
-  double bank_kd = 0.0;       ///< [rad s/m]
+  double bank_kp = 0.0;         ///< [rad/m]
+  double bank_kd = 0.0;         ///< [rad s/m]
   double bank_max_roll = 0.35;  ///< [rad]
   control::AllocationOptions allocation;
   Gait gait = Gait::kPronk;
@@ -74,8 +74,8 @@ struct Controller {
 enum class PulseMode { kMaxForce, kDuration };
 struct Pulse {
   PulseMode mode = PulseMode::kMaxForce;
-  double max_force = 60.0;   ///< per-leg force limit in max_force mode [N]
-  double duration = 0.05;    ///< stance duration T in duration mode [s]
+  double max_force = 60.0;           ///< per-leg force limit in max_force mode [N]
+  double duration = 0.05;            ///< stance duration T in duration mode [s]
   bool gravity_compensation = true;  ///< add m g T to the vertical impulse (seed 2.6.1)
 };
 
@@ -89,18 +89,18 @@ struct Initial {
 
 /// An instantaneous disturbance: a velocity kick at a given time.
 struct Disturbance {
-  double time = 0.0;                 ///< [s]
+  double time = 0.0;                    ///< [s]
   Vec3 linear_impulse = Vec3::Zero();   ///< world frame [N s]
   Vec3 angular_impulse = Vec3::Zero();  ///< body frame [N m s]
 };
 
 /// Run settings.
 struct Simulation {
-  double duration = 10.0;         ///< simulated time [s]
-  long max_strides = 1000000;     ///< stop after this many touchdowns
-  double sample_interval = 0.005; ///< trajectory output interval [s]
+  double duration = 10.0;          ///< simulated time [s]
+  long max_strides = 1000000;      ///< stop after this many touchdowns
+  double sample_interval = 0.005;  ///< trajectory output interval [s]
   ode::SolverOptions solver;
-  double fall_min_height = 0.0;   ///< CoM below this is a fall [m]; default 0.4 * leg length
+  double fall_min_height = 0.0;  ///< CoM below this is a fall [m]; default 0.4 * leg length
   double fall_max_tilt = 1.0471975511965976;  ///< tilt of body z from vertical that is a fall [rad]
 };
 

@@ -88,7 +88,8 @@ TEST_CASE("axisymmetric free body precesses at the analytic rate (case 10)", "[r
   CHECK(w_world.y() == Approx(0.5).epsilon(1e-9));
   CHECK(w_world.z() == Approx(1.2509).epsilon(1e-3));
 
-  const auto s = free_body(Vector3d(Ixx, Ixx, Izz), q0, w_body, scene::AttitudeFormulation::kQuaternion);
+  const auto s =
+      free_body(Vector3d(Ixx, Ixx, Izz), q0, w_body, scene::AttitudeFormulation::kQuaternion);
   const reduced::RigidBodyModel model(s, false);
   for (double t : {1.0, 5.0, 20.0}) {
     const auto end = integrate_free(model, s, t, 1e-12);

@@ -89,7 +89,8 @@ TEST_CASE("case 1: body-only impulse running with the seed's gains", "[reduced][
     const auto& s0 = r.strides[k];
     const auto& s1 = r.strides[k + 1];
     // y channel (setpoint y = 0) and roll channel (exact: attitude error = -roll for pure roll).
-    const double y0 = s0.position.y(), v0 = s0.velocity.y(), y1 = s1.position.y(), v1 = s1.velocity.y();
+    const double y0 = s0.position.y(), v0 = s0.velocity.y(), y1 = s1.position.y(),
+                 v1 = s1.velocity.y();
     const double p0 = s0.euler123.x(), q0 = s0.omega.x(), p1 = s1.euler123.x(), q1 = s1.omega.x();
     const double py0 = w1 * y0 + w2 * v0, py1 = w1 * y1 + w2 * v1;
     const double pr0 = w1 * p0 + w2 * q0, pr1 = w1 * p1 + w2 * q1;
