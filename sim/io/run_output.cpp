@@ -204,7 +204,11 @@ WrittenOutputs write_run_outputs(const std::string& dir, const scene::Scene& sce
   WrittenOutputs w;
   const std::string title = scene.name + " (" + std::string(scene::to_string(scene.model)) + ")";
   w.figures_rendered = render_figure(dir, "motion", figure_motion(title));
-  w.figures_rendered &= render_figure(dir, "strides", figure_strides());
+  if (run.strides.size() >= 2) {
+    w.figures_rendered &= render_figure(dir, "strides", figure_strides());
+  } else {
+    write_file_atomic(dir + "/strides.gp", figure_strides());  // nothing to plot yet
+  }
   if (scene.model == scene::ModelKind::kPulse) {
     w.figures_rendered &= render_figure(dir, "leg_force", figure_leg_force());
   }

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-using nlohmann::json;
-using pronk::io::InputError;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
+using nlohmann::json;
+using pronk::io::InputError;
 namespace io = pronk::io;
 namespace scene = pronk::scene;
 
@@ -56,8 +56,8 @@ void check_error(const InputError& e, const std::string& pointer, const std::str
   CHECK(e.pointer() == pointer);
   CHECK_THAT(e.expected(), Contains(expected));
   CHECK_THAT(e.found(), Contains(found));
-  CHECK(std::string(e.what()) == file + ": " + (pointer.empty() ? "/" : pointer) +
-                                     ": expected " + e.expected() + ", found " + e.found());
+  CHECK(std::string(e.what()) == file + ": " + (pointer.empty() ? "/" : pointer) + ": expected " +
+                                     e.expected() + ", found " + e.found());
 }
 
 /// Field-by-field exact (bitwise for finite doubles) comparison of two scenes.
@@ -147,8 +147,10 @@ json rich_scene() {
   doc["controller"]["allocation"] = {
       {"scheme", "minimum_norm"}, {"max_leg_impulse", 2.5}, {"residual_tol", 1e-6}};
   doc["controller"]["gait"] = {{"kind", "alternate"}, {"groups", {{0, 3}, {1}}}};
-  doc["pulse"] = {
-      {"mode", "max_force"}, {"max_force", 42.5}, {"duration", 0.07}, {"gravity_compensation", false}};
+  doc["pulse"] = {{"mode", "max_force"},
+                  {"max_force", 42.5},
+                  {"duration", 0.07},
+                  {"gravity_compensation", false}};
   doc["initial"] = {{"position", {0.1, -0.2, 0.33}},
                     {"velocity", {0.3, 0.1, -0.2}},
                     {"attitude_deg", {7.7, -3.1, 21.9}},
@@ -160,8 +162,7 @@ json rich_scene() {
       {"duration", 3.3},
       {"max_strides", 17},
       {"sample_interval", 0.01},
-      {"solver",
-       {{"method", "rk4"}, {"h_fixed", 2e-4}, {"h_max", 0.05}, {"event_tol", 1e-11}}},
+      {"solver", {{"method", "rk4"}, {"h_fixed", 2e-4}, {"h_max", 0.05}, {"event_tol", 1e-11}}},
       {"fall", {{"min_height", 0.05}, {"max_tilt_deg", 47.5}}}};
   return doc;
 }
@@ -431,8 +432,8 @@ TEST_CASE("inertia must be a physical body", "[io][scene][errors]") {
   }
   SECTION("both inertia and inertia_tensor") {
     doc["body"]["inertia_tensor"] = {{0.01, 0, 0}, {0, 0.01, 0}, {0, 0, 0.015}};
-    check_error(parse_error(doc), "/body/inertia_tensor", "either \"inertia\" or \"inertia_tensor\"",
-                "both keys");
+    check_error(parse_error(doc), "/body/inertia_tensor",
+                "either \"inertia\" or \"inertia_tensor\"", "both keys");
   }
   SECTION("a valid rotated tensor is accepted and kept") {
     doc["body"].erase("inertia");
@@ -485,7 +486,8 @@ TEST_CASE("legs, gait groups and the initial state are checked", "[io][scene][er
   }
   SECTION("gait group with a repeated index") {
     doc["controller"]["gait"] = {{"kind", "alternate"}, {"groups", {{0, 0}, {1, 2}}}};
-    check_error(parse_error(doc), "/controller/gait/groups/0/1", "a distinct leg index", "number 0");
+    check_error(parse_error(doc), "/controller/gait/groups/0/1", "a distinct leg index",
+                "number 0");
   }
   SECTION("gait group that is empty") {
     doc["controller"]["gait"] = {{"kind", "alternate"}, {"groups", {json::array(), {1, 2}}}};
@@ -638,8 +640,9 @@ TEST_CASE("apply_override rejects bad assignments", "[io][override][errors]") {
                 "command line (--set /nope/x=1)");
   }
   SECTION("missing parent inside an existing object") {
-    check_error(override_error(doc, "/initial/angular_velocity/0=40"), "/initial/angular_velocity/0",
-                "a pointer whose parent exists", "no value at /initial/angular_velocity",
+    check_error(override_error(doc, "/initial/angular_velocity/0=40"),
+                "/initial/angular_velocity/0", "a pointer whose parent exists",
+                "no value at /initial/angular_velocity",
                 "command line (--set /initial/angular_velocity/0=40)");
   }
   SECTION("array index past the end") {

@@ -200,3 +200,39 @@ TEST_CASE("pulse model converges to the impulse model as T -> 0", "[reduced][pul
   CHECK(order >= 0.95);
   for (size_t k = 1; k < errors.size(); ++k) CHECK(errors[k] < errors[k - 1]);
 }
+
+TEST_CASE("robust leg usage: a disabled leg changes nothing the allocation can absorb",
+          "[reduced][allocation]") {
+  // With exact allocations the net impulses, hence the motion, do not depend on
+  // how they are shared: three working legs reproduce the four-leg run.
+  for (const char* name : {"case2_legged_impulse", "case3_legged_pulse"}) {
+    const auto four = test::load_shipped(name, {"/controller/allocation/scheme=minimum_norm"});
+    const auto three = test::load_shipped(
+        name, {"/controller/allocation/scheme=minimum_norm", "/legs/disabled=[2]"});
+    const auto a = reduced::simulate(four);
+    const auto b = reduced::simulate(three);
+    REQUIRE(b.status == reduced::RunStatus::kCompleted);
+    REQUIRE(a.strides.size() == b.strides.size());
+    for (size_t k = 0; k < a.strides.size(); ++k) {
+      CHECK((a.strides[k].position - b.strides[k].position).norm() < 1e-6);
+      CHECK(b.strides[k].active_legs == 3);
+    }
+    CHECK(b.warnings.empty());
+  }
+}
+
+TEST_CASE("a run that falls ends with a status and a reason, never NaN", "[reduced]") {
+  // A trot on diagonal pairs cannot produce a moment about the diagonal (p_y = 0
+  // legs): the allocation reports it, and this disturbed robot falls over.
+  const auto s = test::load_shipped(
+      "case2_legged_impulse", {"/controller/allocation/scheme=minimum_norm",
+                               R"(/controller/gait={"kind":"alternate","groups":[[0,3],[1,2]]})"});
+  const auto r = reduced::simulate(s);
+  CHECK(r.status == reduced::RunStatus::kFell);
+  CHECK(r.reason.find("tilted") != std::string::npos);
+  CHECK(r.warnings.at("allocation_infeasible") >= 1);
+  for (const auto& smp : r.trajectory) {
+    CHECK(smp.position.allFinite());
+    CHECK(smp.euler123.allFinite());
+  }
+}
