@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     s.simulation.duration = 1e9;
     s.simulation.max_strides = strides;
     s.simulation.solver.rtol = s.simulation.solver.atol = 1e-9;
-    const reduced::RunOptions opts{false, false};
+    const reduced::RunOptions opts{.record_trajectory = false, .record_strides = false};
     std::vector<double> rates;
     reduced::RunResult last;
     for (int r = 0; r < repeats; ++r) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "sim/control/allocation.hpp"
 #include "sim/ode/solver.hpp"
@@ -81,6 +82,7 @@ struct RunResult {
   Eigen::Vector3d final_position = Eigen::Vector3d::Zero(),
                   final_velocity = Eigen::Vector3d::Zero(),
                   final_euler123 = Eigen::Vector3d::Zero(), final_omega = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond final_attitude = Eigen::Quaterniond::Identity();  ///< body -> world
 };
 
 }  // namespace pronk::reduced

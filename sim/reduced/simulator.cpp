@@ -174,6 +174,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   stepper->reset(rhs, t, y);
   if (observer) sampler.start(y);
 
+  bool pending_touchdown = options.start_at_touchdown;
   bool running = true;
   while (running) {
     double t_target = sim.duration;
@@ -185,7 +186,12 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
         stance ? std::span<const ode::EventFunction* const>(stance_events)
                : std::span<const ode::EventFunction* const>(flight_events);
     ode::IntegrateResult r;
-    if (t_target > t) {
+    const bool forced_touchdown = pending_touchdown;
+    pending_touchdown = false;
+    if (forced_touchdown) {
+      r.reason = ode::StopReason::kReachedEnd;
+      r.t = t;
+    } else if (t_target > t) {
       r = ode::integrate(rhs, *stepper, t_target, events, sim.solver, observer);
     } else {
       r.reason = ode::StopReason::kReachedEnd;
@@ -193,8 +199,10 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
     }
     t = r.t;
     y = stepper->y();
-    const int event =
-        r.reason == ode::StopReason::kEvent ? (stance ? r.event_index + 1 : r.event_index) : -1;
+    const int event = forced_touchdown ? kTouchdown
+                      : r.reason == ode::StopReason::kEvent
+                          ? (stance ? r.event_index + 1 : r.event_index)
+                          : -1;
     switch (r.reason) {
       case ode::StopReason::kStepSizeCollapse:
         end_run(RunStatus::kDiverged, "step-size collapse at t = " + fmt(t) + " s");
@@ -325,6 +333,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   result.final_velocity = s.velocity;
   result.final_euler123 = s.euler123;
   result.final_omega = s.omega;
+  result.final_attitude = s.attitude;
   if (result.status == RunStatus::kCompleted) {
     result.reason = touchdowns > sim.max_strides - 1 && t < sim.duration
                         ? "reached " + std::to_string(sim.max_strides) + " strides"

@@ -12,6 +12,9 @@ namespace pronk::reduced {
 struct RunOptions {
   bool record_trajectory = true;  ///< sample the trajectory every scene.simulation.sample_interval
   bool record_strides = true;     ///< keep the per-stride records
+  /// Treat the initial state as a touchdown at t = 0 (the controller acts at
+  /// once): used to evaluate the touchdown-to-touchdown stride map.
+  bool start_at_touchdown = false;
 };
 
 /// Simulates the scene with its model (impulse or pulse). Never throws for

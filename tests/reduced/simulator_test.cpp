@@ -170,7 +170,7 @@ TEST_CASE("pulse model converges to the impulse model as T -> 0", "[reduced][pul
   base.initial.angular_velocity = Vector3d(0.3, -0.2, 0.1);
   base.simulation.max_strides = 1;
   base.simulation.solver.rtol = base.simulation.solver.atol = 1e-12;
-  const auto ref = reduced::simulate(base, {false, false});
+  const auto ref = reduced::simulate(base, {.record_trajectory = false, .record_strides = false});
   REQUIRE(ref.status == reduced::RunStatus::kCompleted);
   std::vector<double> Ts = {0.02, 0.01, 0.005, 0.0025, 0.00125};
   std::vector<double> errors;
@@ -179,7 +179,7 @@ TEST_CASE("pulse model converges to the impulse model as T -> 0", "[reduced][pul
     s.model = scene::ModelKind::kPulse;
     s.pulse.mode = scene::PulseMode::kDuration;
     s.pulse.duration = T;
-    const auto r = reduced::simulate(s, {false, false});
+    const auto r = reduced::simulate(s, {.record_trajectory = false, .record_strides = false});
     REQUIRE(r.status == reduced::RunStatus::kCompleted);
     REQUIRE(r.cost.touchdowns == 2);
     const double e = (r.final_position - ref.final_position).norm() +
