@@ -159,6 +159,7 @@ class Dopri5Stepper final : public Stepper {
     // Error estimate into y_tmp_, then the RMS norm.
     y_tmp_.noalias() = (h * e1) * k1 + (h * e3) * k3 + (h * e4) * k4 + (h * e5) * k5 +
                        (h * e6) * k6 + (h * e7) * k7;
+    if (sys.has_error_norm()) return sys.error_norm(y_tmp_, y_, y_new_, rtol_, atol_);
     double sum = 0.0;
     const Eigen::Index n = y_.size();
     for (Eigen::Index i = 0; i < n; ++i) {

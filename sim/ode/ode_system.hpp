@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace pronk::ode {
 
@@ -17,6 +18,24 @@ class OdeSystem {
   virtual int dimension() const = 0;
   /// Writes f(t, y) into dydt (already sized to dimension()).
   virtual void rhs(double t, const Vec& y, Vec& dydt) const = 0;
+
+  /// Optional analytic Jacobian df/dy for the implicit (Rosenbrock) stepper.
+  /// Without it the stepper uses forward differences (n extra RHS evaluations).
+  virtual bool has_jacobian() const { return false; }
+  /// Writes df/dy at (t, y) into J (resized to n x n by the callee).
+  virtual void jacobian(double /*t*/, const Vec& /*y*/, Eigen::SparseMatrix<double>& /*J*/) const {}
+  /// True when f does not depend on t explicitly (the Rosenbrock stepper then
+  /// skips the df/dt term; otherwise it estimates df/dt by a forward difference).
+  virtual bool autonomous() const { return false; }
+
+  /// Optional error norm of adaptive steppers. `err` is the local error estimate
+  /// of a step from y0 to y1; the result is compared with 1 (<= 1: accept).
+  /// Default (has_error_norm() false): the RMS of err_i / (atol + rtol max(|y0_i|, |y1_i|)).
+  virtual bool has_error_norm() const { return false; }
+  virtual double error_norm(const Vec& /*err*/, const Vec& /*y0*/, const Vec& /*y1*/,
+                            double /*rtol*/, double /*atol*/) const {
+    return 0.0;
+  }
 };
 
 /// A scalar event function g(t, y); an event fires when g crosses zero in the

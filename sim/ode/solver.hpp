@@ -17,9 +17,10 @@ enum class Method {
   kRk2,     ///< explicit midpoint (RK2), fixed step, order 2
   kRk4,     ///< classic Runge-Kutta, fixed step, order 4
   kDopri5,  ///< Dormand-Prince 5(4), adaptive, 4th-order dense output
+  kRodas4,  ///< Rosenbrock RODAS4 (Hairer-Wanner), L-stable, adaptive, 3rd-order dense output
 };
 
-/// "euler", "rk2", "rk4", "dopri5".
+/// "euler", "rk2", "rk4", "dopri5", "rodas4".
 std::string_view to_string(Method m);
 /// Parses the names of to_string; returns false on an unknown name.
 bool parse_method(std::string_view name, Method* out);
@@ -37,6 +38,9 @@ struct SolverOptions {
   double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
   double event_tol = 1e-13;    ///< event time tolerance [s]
   long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
+  /// rodas4: systems with at most this many states factorise with dense LU,
+  /// larger ones with Eigen's SparseLU (crossover measured in bench_pseudorigid).
+  int dense_lu_max_dimension = 150;
 
   /// Checks every field; on failure writes "field: value: rule" into *error.
   bool validate(std::string* error) const;
@@ -48,6 +52,8 @@ struct SolverCounters {
   long steps_rejected = 0;
   long rhs_evaluations = 0;
   long events = 0;
+  long jacobian_evaluations = 0;  ///< analytic or finite-difference Jacobians (rodas4)
+  long lu_factorizations = 0;     ///< LU factorisations of I/(gamma h) - J (rodas4)
 };
 
 /// Outcome of one step attempt.

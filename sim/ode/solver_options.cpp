@@ -16,12 +16,14 @@ std::string_view to_string(Method m) {
       return "rk4";
     case Method::kDopri5:
       return "dopri5";
+    case Method::kRodas4:
+      return "rodas4";
   }
   return "unknown";
 }
 
 bool parse_method(std::string_view name, Method* out) {
-  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5}) {
+  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4}) {
     if (name == to_string(m)) {
       *out = m;
       return true;
@@ -30,7 +32,7 @@ bool parse_method(std::string_view name, Method* out) {
   return false;
 }
 
-bool is_adaptive(Method m) { return m == Method::kDopri5; }
+bool is_adaptive(Method m) { return m == Method::kDopri5 || m == Method::kRodas4; }
 
 namespace {
 
@@ -56,7 +58,7 @@ bool positive_finite(std::string* error, const char* field, double value) {
 bool SolverOptions::validate(std::string* error) const {
   if (to_string(method) == "unknown") {
     return fail(error, "method", static_cast<double>(static_cast<int>(method)),
-                "must be one of euler, rk2, rk4, dopri5");
+                "must be one of euler, rk2, rk4, dopri5, rodas4");
   }
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;
@@ -67,6 +69,9 @@ bool SolverOptions::validate(std::string* error) const {
   if (!(h_min >= 0.0)) return fail(error, "h_min", h_min, "must be >= 0");
   if (!(h_min < h_max)) return fail(error, "h_min", h_min, "must be < h_max");
   if (!positive_finite(error, "event_tol", event_tol)) return false;
+  if (dense_lu_max_dimension < 0) {
+    return fail(error, "dense_lu_max_dimension", dense_lu_max_dimension, "must be >= 0");
+  }
   if (max_steps <= 0) {
     return fail(error, "max_steps", static_cast<double>(max_steps), "must be > 0");
   }

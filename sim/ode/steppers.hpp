@@ -14,4 +14,7 @@ std::unique_ptr<Stepper> make_explicit_rk_stepper(const SolverOptions& options, 
 /// Dormand-Prince 5(4) with error control, FSAL and Hairer's dense output.
 std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n);
 
+/// RODAS4 Rosenbrock method with error control and dense output.
+std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n);
+
 }  // namespace pronk::ode::detail
