@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
 #include "sim/io/input_error.hpp"
 
@@ -18,6 +19,10 @@ int run_cli(int argc, const char* const* argv) {
   app.require_subcommand(1);
   SimulateArgs simulate_args;
   CLI::App* simulate = add_simulate_command(app, simulate_args);
+  OptimizeArgs optimize_args;
+  CLI::App* optimize = add_optimize_command(app, optimize_args);
+  ReproduceArgs reproduce_args;
+  CLI::App* reproduce = add_reproduce_command(app, reproduce_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -32,6 +37,8 @@ int run_cli(int argc, const char* const* argv) {
   }
   try {
     if (simulate->parsed()) return run_simulate(simulate_args);
+    if (optimize->parsed()) return run_optimize(optimize_args);
+    if (reproduce->parsed()) return run_reproduce(reproduce_args);
   } catch (const io::InputError& e) {
     std::cerr << "pronk: error: " << e.what() << "\n";
     return 2;

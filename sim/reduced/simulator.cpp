@@ -157,6 +157,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       scene.body.mass * scene.gravity * std::max(scene.controller.hop_height, 1e-3);
   double flight_energy = model.energy(y);
 
+  // Closes the stride in progress; t_next < 0: the run ended before the next touchdown.
   auto finish_stride = [&](double t_next) {
     if (!have_stride) return;
     if (t_next > current.t_touchdown) {
@@ -325,7 +326,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
     }
     if (running) stepper->reset(rhs, t, y);
   }
-  finish_stride(t);  // last stride: no next touchdown, stride time 0
+  finish_stride(-1.0);  // last stride: no next touchdown, stride time 0
 
   result.t_end = t;
   const BodyState s = model.decode(y);

@@ -63,7 +63,8 @@ StrideMapResult stride_map(const scene::Scene& base, const StrideState& s) {
   out.next[2] = r.final_velocity.x() - v_d.x();
   out.next[3] = r.final_velocity.y() - v_d.y();
   out.next[4] = r.final_velocity.z();
-  out.next.segment<3>(5) = math::quat_to_rotation_vector(heading(base).conjugate() * r.final_attitude);
+  out.next.segment<3>(5) =
+      math::quat_to_rotation_vector(heading(base).conjugate() * r.final_attitude);
   out.next.segment<3>(8) = r.final_omega;
   out.ok = out.next.allFinite();
   if (!out.ok) out.reason = "non-finite state";

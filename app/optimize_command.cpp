@@ -1,0 +1,164 @@
+#include "app/optimize_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "optimize/study.hpp"
+#include "optimize/study_runner.hpp"
+#include "sim/io/input_error.hpp"
+#include "sim/io/json_reader.hpp"
+#include "sim/io/scene_loader.hpp"
+
+namespace pronk::app {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_sigint(int) {
+  g_stop.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+int thread_count(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(hw) : 1;
+}
+
+std::string compiler_id() {
+#if defined(__clang__)
+  return "clang " __clang_version__;
+#elif defined(__GNUC__)
+  return "gcc " __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+}  // namespace
+
+CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "optimize",
+      "Run an optimization study: tune scene parameters over a scenario set with NLopt or Ipopt.\n"
+      "Writes journal.jsonl (every evaluation), history.csv, design.json, summary.md and figures.");
+  cmd->add_option("study", args.study_path, "Study file (JSON)")->required();
+  cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_flag("--resume", args.resume, "Continue from the journal in the output directory");
+  cmd->add_option("--out", args.out_dir, "Output directory (default: the study's, results/<name>)");
+  cmd->add_option("--set", args.overrides,
+                  "Override a study value: --set /json/pointer=value (repeatable), e.g. "
+                  "--set /optimizer/max_evaluations=50")
+      ->type_name("/PTR=VALUE");
+  cmd->add_flag("--quiet,-q", args.quiet, "No progress line, no summary");
+  return cmd;
+}
+
+CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "reproduce",
+      "Re-simulate a tuned design (design.json) and compare every recorded metric:\n"
+      "bit-identical on the recording build, within --rtol on another.");
+  cmd->add_option("design", args.design_path, "design.json written by pronk optimize")->required();
+  cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--rtol", args.rtol, "Relative tolerance on another build (default 1e-6)")
+      ->check(CLI::PositiveNumber);
+  return cmd;
+}
+
+int run_optimize(const OptimizeArgs& args) {
+  const optimize::Study study = optimize::load_study(args.study_path, args.overrides);
+  optimize::StudyRunOptions opt;
+  opt.threads = thread_count(args.threads);
+  opt.resume = args.resume;
+  opt.out_dir = args.out_dir;
+  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+  opt.stop_flag = &g_stop;
+  g_stop.store(false);
+  std::signal(SIGINT, on_sigint);
+  const optimize::StudyOutcome o = optimize::run_study(study, opt);
+  std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet) {
+    std::printf("%s: %s\n", study.name.c_str(), o.result.brief_report().c_str());
+    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed), %.1f s, %d threads\n",
+                o.initial.cost, o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",
+                o.result.evaluations, o.replayed, o.wall_time, opt.threads);
+    for (size_t i = 0; i < o.best.values.size(); ++i) {
+      std::printf("  %-24s %12.6g -> %12.6g\n", study.evaluator.parameters[i].name.c_str(),
+                  o.initial.values[i], o.best.values[i]);
+    }
+    std::printf("  results: %s/ (design.json, summary.md, history.svg, compare.svg)\n",
+                o.out_dir.c_str());
+  }
+  const auto s = o.result.status;
+  return (s == optimize::OptimizerStatus::kFailed || s == optimize::OptimizerStatus::kStopped) ? 1
+                                                                                               : 0;
+}
+
+int run_reproduce(const ReproduceArgs& args) {
+  const nlohmann::json design = io::read_json_file(args.design_path);
+  if (!design.is_object() || design.value("type", "") != "pronk_design") {
+    throw io::InputError(
+        args.design_path, "/type", "\"pronk_design\" (a design.json of pronk optimize)",
+        design.is_object() && design.contains("type") ? io::describe(design["type"]) : "nothing");
+  }
+  for (const char* key : {"study_document", "unit", "metrics", "cost"}) {
+    if (!design.contains(key)) {
+      throw io::InputError(args.design_path, std::string("/") + key, "a recorded value", "nothing");
+    }
+  }
+  const std::string dir = std::filesystem::path(args.design_path).parent_path().string();
+  const optimize::Study study = optimize::parse_study(
+      design.at("study_document"), args.design_path + "#/study_document", dir.empty() ? "." : dir);
+  optimize::EvaluatorConfig cfg = study.evaluator;
+  cfg.threads = thread_count(args.threads);
+  const optimize::Evaluator ev(cfg);
+  std::vector<double> unit;
+  try {
+    unit = design.at("unit").get<std::vector<double>>();
+  } catch (const nlohmann::json::exception&) {
+    throw io::InputError(args.design_path, "/unit", "an array of numbers",
+                         io::describe(design.at("unit")));
+  }
+  if (static_cast<int>(unit.size()) != ev.dimension()) {
+    throw io::InputError(args.design_path, "/unit", std::to_string(ev.dimension()) + " numbers",
+                         std::to_string(unit.size()));
+  }
+  const optimize::Evaluation e = ev.evaluate_full(unit);
+  const bool same_build = design.value("commit", "") == std::string(PRONK_GIT_COMMIT) &&
+                          design.value("compiler", "") == compiler_id();
+  std::printf(
+      "reproducing %s (%s build: %s)\n", args.design_path.c_str(),
+      same_build ? "same" : "different",
+      same_build ? "bit-identical required" : ("rtol " + std::to_string(args.rtol)).c_str());
+  std::printf("  %-28s %22s %22s %10s  %s\n", "metric", "recorded", "reproduced", "rel. diff", "");
+  int bad = 0;
+  auto compare = [&](const std::string& name, double recorded, double got) {
+    const double diff = std::abs(got - recorded);
+    const double rel = diff / std::max(std::abs(recorded), 1e-300);
+    const bool ok =
+        same_build ? (got == recorded) : (diff <= args.rtol * std::abs(recorded) + 1e-12);
+    if (!ok) ++bad;
+    std::printf("  %-28s %22.15g %22.15g %10.2e  %s\n", name.c_str(), recorded, got,
+                diff == 0 ? 0.0 : rel, ok ? "ok" : "MISMATCH");
+  };
+  compare("cost", design.at("cost").get<double>(), e.cost);
+  for (const auto& [k, v] : design.at("metrics").items()) {
+    const auto it = e.aggregated.find(k);
+    compare(k, v.get<double>(), it != e.aggregated.end() ? it->second : NAN);
+  }
+  std::printf("%s: %d of %zu values differ\n", bad ? "NOT REPRODUCED" : "reproduced", bad,
+              design.at("metrics").size() + 1);
+  return bad ? 1 : 0;
+}
+
+}  // namespace pronk::app

@@ -1,0 +1,180 @@
+#include "optimize/evaluator.hpp"
+
+#include <chrono>
+#include <exception>
+
+#include "sim/io/input_error.hpp"
+#include "sim/io/scene_loader.hpp"
+#include "sim/reduced/simulator.hpp"
+
+namespace pronk::optimize {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+Evaluator::Evaluator(EvaluatorConfig config)
+    : config_(std::move(config)), pool_(std::make_unique<ThreadPool>(config_.threads)) {}
+
+std::vector<double> Evaluator::lower_bounds() const {
+  return std::vector<double>(dimension(), 0.0);
+}
+std::vector<double> Evaluator::upper_bounds() const {
+  return std::vector<double>(dimension(), 1.0);
+}
+
+std::vector<double> Evaluator::initial_point() const {
+  std::vector<double> x;
+  for (const auto& p : config_.parameters) x.push_back(p.to_unit(p.initial));
+  return x;
+}
+
+std::vector<std::string> Evaluator::variable_names() const {
+  std::vector<std::string> n;
+  for (const auto& p : config_.parameters) n.push_back(p.name);
+  return n;
+}
+
+std::vector<std::string> Evaluator::constraint_names() const {
+  std::vector<std::string> n;
+  for (const auto& c : config_.constraints) n.push_back(c.label());
+  return n;
+}
+
+scene::Scene Evaluator::scene_at(const std::vector<double>& unit) const {
+  return io::parse_scene(bind_parameters(config_.scene_doc, config_.parameters, unit),
+                         config_.scene_file);
+}
+
+Evaluation Evaluator::evaluate_full(const std::vector<double>& unit) const {
+  return evaluate_impl(unit, true);
+}
+
+Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parallel) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  Evaluation ev;
+  ev.unit = unit;
+  ev.values = physical_values(config_.parameters, unit);
+  const size_t nc = config_.constraints.size();
+  auto fail = [&](std::string why) {
+    ev.ok = false;
+    ev.failure = std::move(why);
+    ev.cost = config_.failure_cost;
+    ev.constraints.assign(nc, config_.failure_cost);
+    ev.wall_time = seconds_since(t0);
+    return ev;
+  };
+  if (static_cast<int>(unit.size()) != dimension()) return fail("wrong number of parameters");
+  scene::Scene base;
+  try {
+    base = scene_at(unit);
+  } catch (const io::InputError& e) {
+    return fail(std::string("invalid scene for these parameters: ") + e.what());
+  } catch (const std::exception& e) {
+    return fail(std::string("internal error: ") + e.what());
+  }
+  ev.binding_time = seconds_since(t0);
+
+  // Scenario runs (in parallel) and the stability analysis (one more job).
+  const long n = static_cast<long>(config_.scenarios.scenarios.size());
+  ev.scenarios.resize(static_cast<size_t>(n));
+  std::vector<std::string> errors(static_cast<size_t>(n) + 1);
+  reduced::StabilityResult stab;
+  std::vector<long> strides(static_cast<size_t>(n), 0);
+  auto job = [&](long i) {
+    try {
+      if (i == n) {
+        if (config_.stability) stab = reduced::analyze_stability(base);
+        return;
+      }
+      const Scenario& sc = config_.scenarios.scenarios[static_cast<size_t>(i)];
+      const scene::Scene s = apply_scenario(base, sc, config_.scenarios);
+      reduced::RunOptions opts;
+      opts.record_trajectory = false;
+      const reduced::RunResult r = reduced::simulate(s, opts);
+      ScenarioOutcome& out = ev.scenarios[static_cast<size_t>(i)];
+      out.name = sc.name;
+      out.status = std::string(reduced::to_string(r.status));
+      out.reason = r.reason;
+      out.metrics = scenario_metrics(s, r, config_.fall_penalty, config_.settle);
+      out.strides = r.cost.touchdowns;
+      strides[static_cast<size_t>(i)] = r.cost.touchdowns;
+    } catch (const std::exception& e) {
+      errors[static_cast<size_t>(i)] = e.what();
+    }
+  };
+  if (parallel) {
+    pool_->parallel_for(n + 1, job);
+  } else {
+    for (long i = 0; i <= n; ++i) job(i);
+  }
+  for (const auto& e : errors) {
+    if (!e.empty()) return fail("internal error: " + e);
+  }
+  ev.simulations = n + (config_.stability ? stab.map_evaluations : 0);
+  for (long s : strides) ev.strides += s;
+  ev.strides += config_.stability ? stab.map_evaluations : 0;
+  ev.spectral_radius = config_.stability ? stab.spectral_radius : 0.0;
+  ev.stability_reason = stab.reason;
+  for (auto& o : ev.scenarios) o.metrics["spectral_radius"] = ev.spectral_radius;
+
+  // Aggregation: the mean of every metric, plus each objective/constraint aggregate.
+  auto column = [&](const std::string& metric) {
+    std::vector<double> v;
+    for (const auto& o : ev.scenarios) v.push_back(o.metrics.at(metric));
+    if (v.empty()) v.push_back(metric == "spectral_radius" ? ev.spectral_radius : 0.0);
+    return v;
+  };
+  for (const auto& name : metric_names())
+    ev.aggregated[name] = aggregate(column(name), Aggregate::kMean, 0);
+  ev.cost = 0.0;
+  for (const auto& t : config_.objective) {
+    const double a = aggregate(column(t.metric), t.how, t.alpha);
+    ev.aggregated[std::string(to_string(t.how)) + "(" + t.metric + ")"] = a;
+    ev.cost += t.weight * a;
+  }
+  for (const auto& c : config_.constraints) {
+    const double a = aggregate(column(c.metric), c.how, c.alpha);
+    ev.aggregated[std::string(to_string(c.how)) + "(" + c.metric + ")"] = a;
+    ev.constraints.push_back(c.has_max ? a - c.max : c.min - a);
+  }
+  if (!std::isfinite(ev.cost)) return fail("non-finite cost");
+  ev.wall_time = seconds_since(t0);
+  return ev;
+}
+
+ProblemEvaluation Evaluator::to_problem(const Evaluation& e) {
+  ProblemEvaluation p;
+  p.ok = e.ok;
+  p.cost = e.cost;
+  p.constraints = e.constraints;
+  p.failure = e.failure;
+  return p;
+}
+
+ProblemEvaluation Evaluator::evaluate(const std::vector<double>& x) const {
+  return to_problem(evaluate_full(x));
+}
+
+std::vector<Evaluation> Evaluator::evaluate_full_batch(
+    const std::vector<std::vector<double>>& xs) const {
+  std::vector<Evaluation> out(xs.size());
+  pool_->parallel_for(static_cast<long>(xs.size()), [&](long i) {
+    out[static_cast<size_t>(i)] = evaluate_impl(xs[static_cast<size_t>(i)], false);
+  });
+  return out;
+}
+
+std::vector<ProblemEvaluation> Evaluator::evaluate_batch(
+    const std::vector<std::vector<double>>& xs) const {
+  // Parallel over points, each point's scenarios serial: same numbers either way.
+  std::vector<ProblemEvaluation> out(xs.size());
+  pool_->parallel_for(static_cast<long>(xs.size()), [&](long i) {
+    out[static_cast<size_t>(i)] = to_problem(evaluate_impl(xs[static_cast<size_t>(i)], false));
+  });
+  return out;
+}
+
+}  // namespace pronk::optimize

@@ -1,0 +1,97 @@
+// The objective API (SPEC 5.1): evaluate(parameters) -> Evaluation over a
+// scene, a scenario set, objective terms and constraints. A pure function of
+// its inputs: thread-safe, deterministic whatever the thread count; the
+// scenario runs of one evaluation go in parallel.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "optimize/objective.hpp"
+#include "optimize/parameters.hpp"
+#include "optimize/problem.hpp"
+#include "optimize/scenario.hpp"
+#include "optimize/thread_pool.hpp"
+#include "sim/reduced/stride_map.hpp"
+
+namespace pronk::optimize {
+
+/// Everything an evaluation depends on (immutable once built).
+struct EvaluatorConfig {
+  nlohmann::json scene_doc;          ///< the scene document parameters are bound into
+  std::string scene_file = "scene";  ///< names the scene in error messages
+  std::vector<Parameter> parameters;
+  ScenarioSet scenarios;
+  std::vector<ObjectiveTerm> objective;
+  std::vector<ConstraintSpec> constraints;  ///< each has exactly one of max / min
+  bool stability = true;                    ///< compute the spectral radius of the stride map
+  double fall_penalty = 1.0;  ///< error metrics of a fallen run are at least this [m or rad]
+  double failure_cost = 1e6;  ///< cost (and constraint value) of an evaluation that failed
+  reduced::SettleCriteria settle;
+  int threads = 1;  ///< worker threads for the scenario runs
+};
+
+/// One scenario's outcome.
+struct ScenarioOutcome {
+  std::string name;
+  std::string status;  ///< "completed", "fell", "diverged"
+  std::string reason;
+  MetricMap metrics;
+  long strides = 0;
+};
+
+/// One evaluation (SPEC 5.1).
+struct Evaluation {
+  bool ok = true;       ///< false: these parameters make an invalid scene, or an internal error
+  std::string failure;  ///< why, when !ok
+  std::vector<double> unit;    ///< optimizer coordinates
+  std::vector<double> values;  ///< physical parameter values
+  double cost = 0.0;
+  std::vector<double> constraints;  ///< g_j <= 0 feasible
+  MetricMap aggregated;  ///< mean of every metric, plus every objective/constraint aggregate
+  std::vector<ScenarioOutcome> scenarios;
+  double spectral_radius = 0.0;
+  std::string stability_reason;  ///< why no orbit was found, if so
+  long simulations = 0;          ///< scenario runs + stride-map runs
+  long strides = 0;              ///< simulated strides
+  double wall_time = 0.0;        ///< [s]
+  double binding_time = 0.0;     ///< [s] spent binding parameters and building the scene
+};
+
+class Evaluator final : public Problem {
+ public:
+  explicit Evaluator(EvaluatorConfig config);
+
+  /// The full evaluation at optimizer coordinates `unit` (each in [0, 1]).
+  Evaluation evaluate_full(const std::vector<double>& unit) const;
+  /// Full evaluations of several points, in parallel over the points (each
+  /// point's scenarios serial); the same numbers as evaluate_full.
+  std::vector<Evaluation> evaluate_full_batch(const std::vector<std::vector<double>>& xs) const;
+  /// The scene a parameter vector produces (throws io::InputError when invalid).
+  scene::Scene scene_at(const std::vector<double>& unit) const;
+
+  // Problem:
+  int dimension() const override { return static_cast<int>(config_.parameters.size()); }
+  int num_constraints() const override { return static_cast<int>(config_.constraints.size()); }
+  std::vector<double> lower_bounds() const override;
+  std::vector<double> upper_bounds() const override;
+  std::vector<double> initial_point() const override;
+  std::vector<std::string> variable_names() const override;
+  std::vector<std::string> constraint_names() const override;
+  ProblemEvaluation evaluate(const std::vector<double>& x) const override;
+  std::vector<ProblemEvaluation> evaluate_batch(
+      const std::vector<std::vector<double>>& xs) const override;
+
+  const EvaluatorConfig& config() const { return config_; }
+  static ProblemEvaluation to_problem(const Evaluation& e);
+
+ private:
+  Evaluation evaluate_impl(const std::vector<double>& unit, bool parallel) const;
+  EvaluatorConfig config_;
+  std::unique_ptr<ThreadPool> pool_;
+};
+
+}  // namespace pronk::optimize

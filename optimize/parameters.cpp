@@ -1,0 +1,41 @@
+#include "optimize/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pronk::optimize {
+
+double Parameter::to_unit(double value) const {
+  double u = 0.0;
+  if (log_scale) {
+    u = (std::log(value) - std::log(lower)) / (std::log(upper) - std::log(lower));
+  } else {
+    u = (value - lower) / (upper - lower);
+  }
+  return std::clamp(u, 0.0, 1.0);
+}
+
+double Parameter::from_unit(double u) const {
+  u = std::clamp(std::isfinite(u) ? u : 0.0, 0.0, 1.0);
+  if (log_scale) return std::exp(std::log(lower) + u * (std::log(upper) - std::log(lower)));
+  return lower + u * (upper - lower);
+}
+
+std::vector<double> physical_values(const std::vector<Parameter>& params,
+                                    const std::vector<double>& unit) {
+  std::vector<double> out(params.size());
+  for (size_t i = 0; i < params.size(); ++i) out[i] = params[i].from_unit(unit[i]);
+  return out;
+}
+
+nlohmann::json bind_parameters(const nlohmann::json& scene_doc,
+                               const std::vector<Parameter>& params,
+                               const std::vector<double>& unit) {
+  nlohmann::json doc = scene_doc;
+  for (size_t i = 0; i < params.size(); ++i) {
+    doc[nlohmann::json::json_pointer(params[i].pointer)] = params[i].from_unit(unit[i]);
+  }
+  return doc;
+}
+
+}  // namespace pronk::optimize

@@ -1,0 +1,286 @@
+#include "optimize/study.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "sim/io/json_reader.hpp"
+#include "sim/io/scene_loader.hpp"
+
+namespace pronk::optimize {
+
+using nlohmann::json;
+
+std::string fnv1a_hex(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+Aggregate parse_aggregate(io::JsonReader& r, const std::string& fallback) {
+  const std::string a = r.choice_or("aggregate", fallback, {"mean", "worst", "cvar"});
+  return a == "worst" ? Aggregate::kWorst : a == "cvar" ? Aggregate::kCvar : Aggregate::kMean;
+}
+
+std::string metric_of(io::JsonReader& r) {
+  const std::string m = r.string_or("metric", "");
+  if (!is_metric(m)) {
+    std::string known;
+    for (const auto& n : metric_names()) known += (known.empty() ? "" : ", ") + n;
+    throw r.error("metric", "a metric name (" + known + ")", "\"" + m + "\"");
+  }
+  return m;
+}
+
+// A [lo, hi] range with 0 <= lo <= hi, scaled.
+void range(io::JsonReader& r, const std::string& key, double scale, double* lo, double* hi) {
+  if (!r.has(key)) {
+    r.optional(key);
+    return;
+  }
+  const Eigen::VectorXd v = r.vector(key, 2, 0.0, 1e6);
+  if (v[0] > v[1]) throw r.error(key, "[lo, hi] with lo <= hi", "lo > hi");
+  *lo = v[0] * scale;
+  *hi = v[1] * scale;
+}
+
+Scenario parse_scenario(io::JsonReader r, long index) {
+  Scenario s;
+  s.name = r.string_or("name", "scenario_" + std::to_string(index));
+  s.position_offset = r.vec3_or("position_offset", s.position_offset);
+  s.velocity_kick = r.vec3_or("velocity_kick", s.velocity_kick);
+  s.tilt = r.vec3_or("tilt_deg", Eigen::Vector3d::Zero()) * kDeg;
+  s.angular_velocity = r.vec3_or("angular_velocity", s.angular_velocity);
+  s.duration = r.number_or("duration", 0.0, 0.0, 1e6);
+  s.strides = r.integer_or("strides", 0, 0, 100000000);
+  if (r.has("disturbances")) {
+    for (io::JsonReader d : r.object_array("disturbances")) {
+      scene::Disturbance dist;
+      dist.time = d.number("time", 0.0, 1e9);
+      dist.linear_impulse = d.vec3_or("linear_impulse", Eigen::Vector3d::Zero());
+      dist.angular_impulse = d.vec3_or("angular_impulse", Eigen::Vector3d::Zero());
+      d.finish();
+      s.disturbances.push_back(dist);
+    }
+  } else {
+    r.optional("disturbances");
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace
+
+Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
+  Study st;
+  st.file = file;
+  st.document = doc;
+  io::JsonReader r(doc, file, "");
+  st.name = r.string_or("name", "");
+  if (st.name.empty() || st.name.find('/') != std::string::npos) {
+    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  }
+  r.string_or("description", "");
+  // The scene: a path (relative to the study file) or an inline object, plus overrides.
+  json scene_doc;
+  std::string scene_file = file + "#/scene";
+  if (!r.has("scene"))
+    throw r.error("scene", "a scene file path or an inline scene object", "nothing");
+  const json& sv = doc.at("scene");
+  r.optional("scene");
+  if (sv.is_string()) {
+    std::filesystem::path p(sv.get<std::string>());
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    scene_file = p.lexically_normal().string();
+    scene_doc = io::read_json_file(scene_file);
+  } else if (sv.is_object()) {
+    scene_doc = sv;
+  } else {
+    throw r.error("scene", "a scene file path or an inline scene object", io::describe(sv));
+  }
+  if (r.has("scene_overrides")) {
+    const json& ov = doc.at("scene_overrides");
+    r.optional("scene_overrides");
+    if (!ov.is_array())
+      throw r.error("scene_overrides", "an array of \"/ptr=value\" strings", io::describe(ov));
+    for (size_t i = 0; i < ov.size(); ++i) {
+      if (!ov[i].is_string()) {
+        throw io::InputError(file, "/scene_overrides/" + std::to_string(i),
+                             "a \"/ptr=value\" string", io::describe(ov[i]));
+      }
+      io::apply_override(scene_doc, ov[i].get<std::string>());
+    }
+  } else {
+    r.optional("scene_overrides");
+  }
+  // The scene must be valid as given (its errors name the scene file).
+  const scene::Scene scene0 = io::parse_scene(scene_doc, scene_file);
+  EvaluatorConfig& ec = st.evaluator;
+  // Parameters bind into the resolved scene, where every number is explicit.
+  const json resolved = io::scene_to_json(scene0);
+  ec.scene_doc = resolved;
+  ec.scene_file = scene_file;
+
+  // Parameters.
+  for (io::JsonReader p : r.object_array("parameters")) {
+    Parameter par;
+    par.name = p.string_or("name", "");
+    if (par.name.empty()) throw p.error("name", "a parameter name", "nothing");
+    par.pointer = p.string_or("pointer", "");
+    json::json_pointer jp;
+    try {
+      jp = json::json_pointer(par.pointer);
+    } catch (const json::exception& e) {
+      throw p.error("pointer", "a JSON Pointer into the scene", "\"" + par.pointer + "\"");
+    }
+    // The resolved scene holds every number explicitly: the pointer must name one.
+    if (par.pointer.empty() || !resolved.contains(jp) || !resolved.at(jp).is_number()) {
+      throw p.error("pointer", "a pointer to a number of the scene (see scene.resolved.json)",
+                    "\"" + par.pointer + "\"");
+    }
+    par.lower = p.number("lower");
+    par.upper = p.number("upper");
+    if (!(par.upper > par.lower))
+      throw p.error("upper", "a number > lower", std::to_string(par.upper));
+    par.log_scale = p.boolean_or("log", false);
+    if (par.log_scale && !(par.lower > 0)) {
+      throw p.error("lower", "a positive lower bound for a log-scaled parameter",
+                    std::to_string(par.lower));
+    }
+    const double current = resolved.at(jp).get<double>();
+    par.initial =
+        p.number_or("initial", std::clamp(current, par.lower, par.upper), par.lower, par.upper);
+    p.finish();
+    ec.scene_doc[jp] = par.initial;
+    ec.parameters.push_back(par);
+  }
+  if (ec.parameters.empty()) throw r.error("parameters", "at least one parameter", "an empty list");
+  {
+    std::vector<std::string> names;
+    for (const auto& p : ec.parameters) {
+      if (std::find(names.begin(), names.end(), p.name) != names.end()) {
+        throw r.error("parameters", "distinct parameter names", "\"" + p.name + "\" twice");
+      }
+      names.push_back(p.name);
+    }
+  }
+  // The bound document must still be a valid scene (e.g. a pointer that adds an unknown key).
+  io::parse_scene(ec.scene_doc, scene_file);
+
+  // Scenarios.
+  io::JsonReader s = r.object("scenarios");
+  ec.scenarios.duration = s.number_or("duration", 5.0, 1e-6, 1e6);
+  ec.scenarios.strides = s.integer_or("strides", 0, 0, 100000000);
+  if (s.has("list")) {
+    long i = 0;
+    for (io::JsonReader one : s.object_array("list"))
+      ec.scenarios.scenarios.push_back(parse_scenario(one, i++));
+  } else {
+    s.optional("list");
+  }
+  if (s.has("random")) {
+    io::JsonReader rr = s.object("random");
+    RandomScenarios spec;
+    spec.count = rr.integer_or("count", 0, 0, 1000000);
+    spec.seed = static_cast<std::uint64_t>(rr.integer_or("seed", 1, 0, 9007199254740991L));
+    range(rr, "tilt_deg", kDeg, &spec.tilt_lo, &spec.tilt_hi);
+    range(rr, "offset", 1.0, &spec.offset_lo, &spec.offset_hi);
+    range(rr, "lateral_offset", 1.0, &spec.lateral_lo, &spec.lateral_hi);
+    range(rr, "velocity_kick", 1.0, &spec.kick_lo, &spec.kick_hi);
+    range(rr, "yaw_deg", kDeg, &spec.yaw_lo, &spec.yaw_hi);
+    range(rr, "angular_velocity", 1.0, &spec.spin_lo, &spec.spin_hi);
+    rr.finish();
+    add_random_scenarios(spec, ec.scenarios);
+  } else {
+    s.optional("random");
+  }
+  s.finish();
+  if (ec.scenarios.scenarios.empty()) {
+    throw s.error("", "at least one scenario (\"list\" or \"random\")", "none");
+  }
+
+  // Objective and constraints.
+  for (io::JsonReader t : r.object_array("objective")) {
+    ObjectiveTerm term;
+    term.metric = metric_of(t);
+    term.weight = t.number_or("weight", 1.0, -1e9, 1e9);
+    term.how = parse_aggregate(t, "mean");
+    term.alpha = t.number_or("alpha", 0.2, 1e-6, 1.0);
+    t.finish();
+    ec.objective.push_back(term);
+  }
+  if (ec.objective.empty())
+    throw r.error("objective", "at least one objective term", "an empty list");
+  if (r.has("constraints")) {
+    for (io::JsonReader c : r.object_array("constraints")) {
+      ConstraintSpec cs;
+      cs.metric = metric_of(c);
+      cs.how = parse_aggregate(c, "worst");
+      cs.alpha = c.number_or("alpha", 0.2, 1e-6, 1.0);
+      cs.has_max = c.has("max");
+      cs.has_min = c.has("min");
+      if (cs.has_max == cs.has_min)
+        throw c.error("max", "exactly one of \"max\" or \"min\"", cs.has_max ? "both" : "neither");
+      if (cs.has_max) cs.max = c.number("max");
+      if (cs.has_min) cs.min = c.number("min");
+      c.optional("max");
+      c.optional("min");
+      c.finish();
+      ec.constraints.push_back(cs);
+    }
+  } else {
+    r.optional("constraints");
+  }
+  ec.stability = r.boolean_or("stability", true);
+  ec.fall_penalty = r.positive_or("fall_penalty", 1.0);
+
+  // Optimizer.
+  io::JsonReader o = r.object("optimizer");
+  OptimizerOptions& op = st.optimizer;
+  op.library = o.choice_or("library", "nlopt", {"nlopt", "ipopt"});
+  op.algorithm = o.string_or("algorithm", op.library == "ipopt" ? "ipopt" : "LN_BOBYQA");
+  op.local_algorithm = o.string_or("local_algorithm", op.local_algorithm);
+  op.max_evaluations = o.integer_or("max_evaluations", op.max_evaluations, 1, 100000000);
+  op.max_time = o.number_or("max_time", 0.0, 0.0, 1e9);
+  op.ftol_rel = o.number_or("ftol_rel", op.ftol_rel, 0.0, 1.0);
+  op.xtol_rel = o.number_or("xtol_rel", op.xtol_rel, 0.0, 1.0);
+  op.seed = static_cast<unsigned long long>(o.integer_or("seed", 1, 0, 9007199254740991L));
+  op.penalty_weight = o.number_or("penalty_weight", op.penalty_weight, 0.0, 1e12);
+  op.fd_step = o.number_or("fd_step", op.fd_step, 1e-12, 0.1);
+  if (o.has("options")) {
+    const json& opts = doc.at("optimizer").at("options");
+    o.optional("options");
+    if (!opts.is_object())
+      throw o.error("options", "an object of Ipopt options", io::describe(opts));
+    op.ipopt_options = opts;
+  } else {
+    o.optional("options");
+  }
+  o.finish();
+  std::string err;
+  if (!op.validate(&err)) {
+    const std::string field = err.substr(0, err.find(':'));
+    throw io::InputError(file, "/optimizer/" + field, "valid optimizer options", err);
+  }
+  st.output_dir = r.string_or("output", "results/" + st.name);
+  r.finish();
+  st.hash = fnv1a_hex(doc.dump() + "\n" + resolved.dump());
+  return st;
+}
+
+Study load_study(const std::string& path, const std::vector<std::string>& overrides) {
+  json doc = io::read_json_file(path);
+  for (const auto& o : overrides) io::apply_override(doc, o);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return parse_study(doc, path, dir.empty() ? "." : dir);
+}
+
+}  // namespace pronk::optimize

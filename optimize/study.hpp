@@ -1,0 +1,37 @@
+// Study files (SPEC 5.3): the scene, parameters, scenarios, objective,
+// constraints, optimizer and output directory of one optimization, loaded
+// with the error discipline of SPEC 8.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "optimize/evaluator.hpp"
+#include "optimize/optimizer.hpp"
+
+namespace pronk::optimize {
+
+struct Study {
+  std::string name;
+  std::string file;           ///< where it was read from
+  nlohmann::json document;    ///< the study as read (after --set overrides)
+  std::string hash;           ///< FNV-1a 64 of the canonical study + scene documents (hex)
+  EvaluatorConfig evaluator;  ///< scene document, parameters, scenarios, objective, constraints
+  OptimizerOptions optimizer;
+  std::string output_dir;  ///< default results/<name>
+};
+
+/// Reads a study file; `overrides` are "--set /ptr=value" applied to the study
+/// document (e.g. /optimizer/max_evaluations=50). Scene paths are relative to
+/// the study file. Throws io::InputError on bad input.
+Study load_study(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// Parses a study document (already read); `base_dir` resolves a relative scene path.
+Study parse_study(const nlohmann::json& doc, const std::string& file, const std::string& base_dir);
+
+/// 64-bit FNV-1a of a string, as 16 hex digits.
+std::string fnv1a_hex(const std::string& text);
+
+}  // namespace pronk::optimize

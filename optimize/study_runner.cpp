@@ -1,0 +1,393 @@
+#include "optimize/study_runner.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "optimize/journal.hpp"
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+#include "sim/io/plot.hpp"
+#include "sim/io/run_output.hpp"
+#include "sim/io/scene_loader.hpp"
+#include "sim/reduced/simulator.hpp"
+
+namespace pronk::optimize {
+
+using nlohmann::json;
+
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The Problem the driver sees: replays the journal on --resume (same points in
+// the same order give the recorded results without simulating), otherwise
+// evaluates and keeps the full evaluation for the journal writer.
+class StudyProblem final : public Problem {
+ public:
+  StudyProblem(const Evaluator& ev, std::vector<JournalRecord> replay)
+      : ev_(ev), replay_(std::move(replay)) {}
+  int dimension() const override { return ev_.dimension(); }
+  int num_constraints() const override { return ev_.num_constraints(); }
+  std::vector<double> lower_bounds() const override { return ev_.lower_bounds(); }
+  std::vector<double> upper_bounds() const override { return ev_.upper_bounds(); }
+  std::vector<double> initial_point() const override { return ev_.initial_point(); }
+  std::vector<std::string> variable_names() const override { return ev_.variable_names(); }
+  std::vector<std::string> constraint_names() const override { return ev_.constraint_names(); }
+
+  ProblemEvaluation evaluate(const std::vector<double>& x) const override {
+    ProblemEvaluation p;
+    if (take_replay(x, &p)) return p;
+    Evaluation e = ev_.evaluate_full(x);
+    p = Evaluator::to_problem(e);
+    keep(std::move(e));
+    return p;
+  }
+  std::vector<ProblemEvaluation> evaluate_batch(
+      const std::vector<std::vector<double>>& xs) const override {
+    std::vector<ProblemEvaluation> out(xs.size());
+    size_t i = 0;
+    for (; i < xs.size() && take_replay(xs[i], &out[i]); ++i) {
+    }
+    std::vector<std::vector<double>> rest(xs.begin() + static_cast<long>(i), xs.end());
+    std::vector<Evaluation> full = ev_.evaluate_full_batch(rest);
+    for (size_t k = 0; k < full.size(); ++k) {
+      out[i + k] = Evaluator::to_problem(full[k]);
+      keep(std::move(full[k]));
+    }
+    return out;
+  }
+  /// The full evaluation of x made most recently (removed), if any.
+  bool take(const std::vector<double>& x, Evaluation* e) const {
+    std::lock_guard<std::mutex> lock(m_);
+    auto it = cache_.find(x);
+    if (it == cache_.end() || it->second.empty()) return false;
+    *e = std::move(it->second.front());
+    it->second.pop_front();
+    if (it->second.empty()) cache_.erase(it);
+    return true;
+  }
+  long replayed() const {
+    std::lock_guard<std::mutex> lock(m_);
+    return static_cast<long>(pos_);
+  }
+
+ private:
+  bool take_replay(const std::vector<double>& x, ProblemEvaluation* p) const {
+    std::lock_guard<std::mutex> lock(m_);
+    if (pos_ >= replay_.size()) return false;
+    if (replay_[pos_].x != x) {
+      replay_.resize(pos_);  // the driver left the recorded path: evaluate from here on
+      return false;
+    }
+    *p = replay_[pos_++].result;
+    return true;
+  }
+  void keep(Evaluation e) const {
+    std::lock_guard<std::mutex> lock(m_);
+    cache_[e.unit].push_back(std::move(e));
+  }
+  const Evaluator& ev_;
+  mutable std::vector<JournalRecord> replay_;
+  mutable size_t pos_ = 0;
+  mutable std::map<std::vector<double>, std::deque<Evaluation>> cache_;
+  mutable std::mutex m_;
+};
+
+// Writes each new evaluation to the journal and timings, tracks progress.
+class JournalObserver final : public EvaluationObserver {
+ public:
+  JournalObserver(const StudyProblem& problem, JournalWriter& journal, std::FILE* timings,
+                  long recorded, std::vector<std::string> names, long max_evals, bool progress)
+      : problem_(problem),
+        journal_(journal),
+        timings_(timings),
+        recorded_(recorded),
+        names_(std::move(names)),
+        max_evals_(max_evals),
+        progress_(progress) {}
+  void on_evaluation(long index, const std::vector<double>& x, const ProblemEvaluation& e,
+                     const char* purpose) override {
+    const bool feasible = e.ok && std::all_of(e.constraints.begin(), e.constraints.end(),
+                                              [](double g) { return g <= 1e-8; });
+    if (feasible && e.cost < best_) best_ = e.cost;
+    if (index >= recorded_) {
+      Evaluation full;
+      if (!problem_.take(x, &full)) {
+        full.unit = x;
+        full.ok = e.ok;
+        full.cost = e.cost;
+        full.constraints = e.constraints;
+        full.failure = e.failure;
+      }
+      journal_.append(journal_record(index, purpose, full, names_));
+      if (timings_) {
+        std::fprintf(timings_, "%ld,%.6f,%.6f,%ld,%ld\n", index, full.wall_time, full.binding_time,
+                     full.simulations, full.strides);
+        std::fflush(timings_);
+      }
+    }
+    if (progress_ && (now_s() - last_print_ > 0.2 || index + 1 >= max_evals_)) {
+      last_print_ = now_s();
+      std::fprintf(stderr, "\r  evaluation %ld/%ld  best feasible cost %s   ", index + 1,
+                   max_evals_, std::isfinite(best_) ? std::to_string(best_).c_str() : "(none yet)");
+      std::fflush(stderr);
+    }
+  }
+
+ private:
+  const StudyProblem& problem_;
+  JournalWriter& journal_;
+  std::FILE* timings_;
+  long recorded_;
+  std::vector<std::string> names_;
+  long max_evals_;
+  bool progress_;
+  double best_ = INFINITY;
+  double last_print_ = 0.0;
+};
+
+std::string csv_num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string compiler_id() {
+#if defined(__clang__)
+  return "clang " __clang_version__;
+#elif defined(__GNUC__)
+  return "gcc " __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+json metrics_json(const Evaluation& e) {
+  json m = json::object();
+  for (const auto& [k, v] : e.aggregated) m[k] = v;
+  return m;
+}
+
+// Writes history.csv from the journal.
+void write_history(const std::string& dir, const JournalContents& j, const Evaluator& ev) {
+  std::string out = "index,purpose,ok,cost,feasible,best_feasible_cost";
+  for (const auto& n : ev.variable_names()) out += "," + n;
+  for (size_t c = 0; c < ev.config().constraints.size(); ++c) out += ",g" + std::to_string(c);
+  out += ",spectral_radius\n";
+  double best = INFINITY;
+  for (const auto& r : j.records) {
+    const bool feasible =
+        r.result.ok && std::all_of(r.result.constraints.begin(), r.result.constraints.end(),
+                                   [](double g) { return g <= 1e-8; });
+    if (feasible) best = std::min(best, r.result.cost);
+    out += std::to_string(r.index) + "," + r.purpose + "," + (r.result.ok ? "1" : "0") + "," +
+           csv_num(r.result.cost) + "," + (feasible ? "1" : "0") + "," +
+           (std::isfinite(best) ? csv_num(best) : std::string(""));
+    const auto values = physical_values(ev.config().parameters, r.x);
+    for (double v : values) out += "," + csv_num(v);
+    for (double g : r.result.constraints) out += "," + csv_num(g);
+    out += "," + csv_num(r.line.value("spectral_radius", 0.0)) + "\n";
+  }
+  io::write_file_atomic(dir + "/history.csv", out);
+}
+
+std::string figure_history() {
+  return "set terminal svg size 900,500 dynamic enhanced font 'Helvetica,11'\n"
+         "set output 'history.svg'\nset datafile separator ','\nset grid\n"
+         "set title 'Optimization history'\nset xlabel 'evaluation'\nset ylabel 'cost'\n"
+         "set logscale y\n"
+         "plot 'history.csv' every ::1 u 1:($3==1 && $4>0 ? $4 : 1/0) w p pt 7 ps 0.4 t 'cost', "
+         "'' every ::1 u 1:($6>0 ? $6 : 1/0) w l lw 2 t 'best feasible'\n";
+}
+
+std::string figure_compare(const std::string& title) {
+  return "set terminal svg size 900,640 dynamic enhanced font 'Helvetica,11'\n"
+         "set output 'compare.svg'\nset datafile separator ','\nset grid\n"
+         "set multiplot layout 2,2 title '" +
+         title +
+         "' noenhanced\n"
+         "set xlabel 'time [s]'\n"
+         "set title 'Lateral position y'; set ylabel 'y [m]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:3 w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:3 w l t 'tuned'\n"
+         "set title 'Roll'; set ylabel 'roll [deg]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:8 w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:8 w l t 'tuned'\n"
+         "set title 'Height'; set ylabel 'z [m]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:4 w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:4 w l t 'tuned'\n"
+         "set title 'x - x_d'; set ylabel 'error [m]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:($2-$14) w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:($2-$14) w l t 'tuned'\n"
+         "unset multiplot\n";
+}
+
+// Simulates a design on the first scenario and writes its outputs into dir.
+void write_design_run(const std::string& dir, const Evaluator& ev, const std::vector<double>& x) {
+  const scene::Scene base = ev.scene_at(x);
+  const auto& set = ev.config().scenarios;
+  const scene::Scene s = apply_scenario(base, set.scenarios.front(), set);
+  const reduced::RunResult r = reduced::simulate(s);
+  io::write_run_outputs(dir, s, r, reduced::compute_metrics(s, r));
+}
+
+std::string summary_markdown(const Study& st, const StudyOutcome& o) {
+  std::ostringstream md;
+  const auto& ev = st.evaluator;
+  md << "# Study `" << st.name << "`\n\n";
+  md << "Optimizer: " << o.result.library << " " << o.result.algorithm << " — status **"
+     << to_string(o.result.status) << "** (" << o.result.message << "), " << o.result.evaluations
+     << " evaluations (" << o.replayed << " replayed from the journal), "
+     << o.result.failed_evaluations << " failed, wall time " << o.wall_time << " s.\n\n";
+  if (o.result.constraints_as_penalty) {
+    md << "The algorithm does not support constraints: they were added to the cost as a "
+          "penalty.\n\n";
+  }
+  md << "| parameter | initial | tuned | bounds |\n|---|---|---|---|\n";
+  for (size_t i = 0; i < ev.parameters.size(); ++i) {
+    md << "| " << ev.parameters[i].name << " | " << o.initial.values[i] << " | " << o.best.values[i]
+       << " | [" << ev.parameters[i].lower << ", " << ev.parameters[i].upper << "]"
+       << (ev.parameters[i].log_scale ? " log" : "") << " |\n";
+  }
+  md << "\n| metric (over " << ev.scenarios.scenarios.size()
+     << " scenarios) | initial | tuned |\n|---|---|---|\n";
+  md << "| cost | " << o.initial.cost << " | " << o.best.cost << " |\n";
+  for (const auto& [k, v] : o.best.aggregated) {
+    const auto it = o.initial.aggregated.find(k);
+    md << "| " << k << " | " << (it != o.initial.aggregated.end() ? it->second : 0.0) << " | " << v
+       << " |\n";
+  }
+  md << "\nConstraints (g <= 0 is feasible):\n\n";
+  for (size_t c = 0; c < ev.constraints.size(); ++c) {
+    md << "- " << ev.constraints[c].label() << ": initial g = " << o.initial.constraints[c]
+       << ", tuned g = " << o.best.constraints[c] << "\n";
+  }
+  md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
+     << "/design.json`), `history.csv`, `journal.jsonl`, `history.svg`, `compare.svg`, "
+        "`initial/` and `tuned/` (first scenario, simulated).\n";
+  return md.str();
+}
+
+}  // namespace
+
+json design_document(const Study& st, const StudyOutcome& o, int threads) {
+  json values = json::object();
+  for (size_t i = 0; i < st.evaluator.parameters.size(); ++i) {
+    values[st.evaluator.parameters[i].name] = o.best.values[i];
+  }
+  // The study with its scene inlined: reproducible from this file alone.
+  json study = st.document;
+  study["scene"] = st.evaluator.scene_doc;
+  study.erase("scene_overrides");
+  study.erase("output");
+  const scene::Scene tuned =
+      io::parse_scene(bind_parameters(st.evaluator.scene_doc, st.evaluator.parameters, o.best.unit),
+                      st.evaluator.scene_file);
+  return {{"type", "pronk_design"},
+          {"study", st.name},
+          {"study_hash", st.hash},
+          {"version", PRONK_VERSION},
+          {"commit", PRONK_GIT_COMMIT},
+          {"compiler", compiler_id()},
+          {"seed", st.optimizer.seed},
+          {"threads", threads},
+          {"wall_time_s", o.wall_time},
+          {"optimizer",
+           {{"library", o.result.library},
+            {"algorithm", o.result.algorithm},
+            {"status", std::string(to_string(o.result.status))},
+            {"message", o.result.message},
+            {"evaluations", o.result.evaluations},
+            {"failed_evaluations", o.result.failed_evaluations}}},
+          {"parameters", values},
+          {"unit", o.best.unit},
+          {"cost", o.best.cost},
+          {"constraints", o.best.constraints},
+          {"feasible", o.result.best_feasible},
+          {"metrics", metrics_json(o.best)},
+          {"initial_metrics", metrics_json(o.initial)},
+          {"initial_cost", o.initial.cost},
+          {"scene", io::scene_to_json(tuned)},
+          {"study_document", study}};
+}
+
+StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
+  const double t0 = now_s();
+  StudyOutcome o;
+  o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
+  io::make_directories(o.out_dir);
+  const std::string journal_path = o.out_dir + "/journal.jsonl";
+
+  EvaluatorConfig cfg = st.evaluator;
+  cfg.threads = opt.threads;
+  const Evaluator evaluator(cfg);
+
+  json header = {{"type", "header"},
+                 {"study", st.name},
+                 {"study_hash", st.hash},
+                 {"parameters", evaluator.variable_names()},
+                 {"constraints", evaluator.constraint_names()},
+                 {"optimizer", st.optimizer.library + ":" + st.optimizer.algorithm},
+                 {"seed", st.optimizer.seed}};
+  JournalContents previous = read_journal(journal_path);
+  if (!previous.header.is_null()) {
+    if (!opt.resume) {
+      throw io::InputError(journal_path, "", "no journal (or --resume to continue it)",
+                           "a journal of an earlier run");
+    }
+    if (previous.header.value("study_hash", "") != st.hash) {
+      throw io::InputError(journal_path, "/study_hash",
+                           "the journal of this study (hash " + st.hash + ")",
+                           "hash " + previous.header.value("study_hash", std::string("?")));
+    }
+    if (previous.torn_tail) {
+      // Rewrite without the torn line so appends start on a fresh line.
+      std::string text = previous.header.dump() + "\n";
+      for (const auto& r : previous.records) text += r.line.dump() + "\n";
+      io::write_file_atomic(journal_path, text);
+    }
+  }
+  const long recorded = static_cast<long>(previous.records.size());
+  StudyProblem problem(evaluator, previous.records);
+  JournalWriter journal(journal_path, header);
+  std::FILE* timings = std::fopen((o.out_dir + "/timings.csv").c_str(), recorded > 0 ? "a" : "w");
+  if (timings && recorded == 0)
+    std::fprintf(timings, "index,wall_time_s,binding_time_s,simulations,strides\n");
+  JournalObserver observer(problem, journal, timings, recorded, evaluator.variable_names(),
+                           st.optimizer.max_evaluations, opt.progress);
+
+  OptimizerOptions oo = st.optimizer;
+  oo.stop_flag = opt.stop_flag;
+  o.result = run_optimizer(problem, oo, &observer);
+  if (timings) std::fclose(timings);
+  if (opt.progress) std::fprintf(stderr, "\n");
+  o.replayed = problem.replayed();
+
+  // The starting and the tuned design, fully evaluated (deterministic: same numbers as recorded).
+  o.initial = evaluator.evaluate_full(evaluator.initial_point());
+  o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
+                                                           : o.result.best_x);
+  o.wall_time = now_s() - t0;
+
+  write_history(o.out_dir, read_journal(journal_path), evaluator);
+  io::write_file_atomic(o.out_dir + "/design.json",
+                        io::dump_checked(design_document(st, o, opt.threads)));
+  io::write_file_atomic(o.out_dir + "/summary.md", summary_markdown(st, o));
+  write_design_run(o.out_dir + "/initial", evaluator, o.initial.unit);
+  write_design_run(o.out_dir + "/tuned", evaluator, o.best.unit);
+  io::render_figure(o.out_dir, "history", figure_history());
+  io::render_figure(o.out_dir, "compare",
+                    figure_compare(st.name + ": initial vs tuned (first scenario)"));
+  return o;
+}
+
+}  // namespace pronk::optimize

@@ -1,0 +1,36 @@
+// Runs a study end to end: journal (resumable), optimizer, result files
+// (design.json, history.csv, summary.md, figures) written atomically.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "optimize/study.hpp"
+
+namespace pronk::optimize {
+
+struct StudyRunOptions {
+  int threads = 1;
+  bool resume = false;    ///< continue from the journal in the output directory
+  std::string out_dir;    ///< overrides the study's output directory
+  bool progress = false;  ///< one throttled progress line on stderr
+  const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C
+};
+
+struct StudyOutcome {
+  OptimizerResult result;
+  Evaluation initial;  ///< the starting design
+  Evaluation best;     ///< the tuned design
+  std::string out_dir;
+  long replayed = 0;       ///< evaluations taken from the journal on --resume
+  double wall_time = 0.0;  ///< [s]
+};
+
+/// Runs the study. Throws io::InputError for a journal of another study or
+/// an existing journal without --resume; std::runtime_error for I/O failures.
+StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
+
+/// design.json of a finished study (self-contained: reproducible from it alone).
+nlohmann::json design_document(const Study& study, const StudyOutcome& outcome, int threads);
+
+}  // namespace pronk::optimize
