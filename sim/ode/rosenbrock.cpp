@@ -110,8 +110,8 @@ class Rodas4Stepper final : public Stepper {
         if (h_ < h_min_) return StepStatus::kStepSizeCollapse;
         continue;
       }
-      double fac = std::clamp(std::pow(std::max(err, 1e-300), 0.25) / kSafety, kFacMaxInv,
-                              kFacMinInv);
+      double fac =
+          std::clamp(std::pow(std::max(err, 1e-300), 0.25) / kSafety, kFacMaxInv, kFacMinInv);
       double h_next = h / fac;
       if (err <= 1.0) {
         // Gustafsson's predictive step control.

@@ -109,8 +109,9 @@ TEST_CASE("rodas4 is L-stable: one huge step damps the stiff mode", "[ode][rosen
   CHECK(e < 1e-2);
 }
 
-TEST_CASE("rodas4 adaptive: accurate, far cheaper than dopri5 when stiff, dense and sparse LU agree",
-          "[ode][rosenbrock]") {
+TEST_CASE(
+    "rodas4 adaptive: accurate, far cheaper than dopri5 when stiff, dense and sparse LU agree",
+    "[ode][rosenbrock]") {
   const LinearStiff sys(1e5, true);
   const Vec y0 = Vec::Ones(4);
   auto run = [&](Method m, int dense_max, long* steps, long* lu) {
@@ -149,8 +150,7 @@ TEST_CASE("rodas4 without an analytic Jacobian uses finite differences", "[ode][
   auto s = pronk::ode::make_stepper(o, 4);
   const Vec y0 = Vec::Ones(4);
   s->reset(sys, 0.0, y0);
-  REQUIRE(pronk::ode::integrate(sys, *s, 3.0, {}, o).reason ==
-          pronk::ode::StopReason::kReachedEnd);
+  REQUIRE(pronk::ode::integrate(sys, *s, 3.0, {}, o).reason == pronk::ode::StopReason::kReachedEnd);
   CHECK((s->y() - sys.exact(3.0, y0)).norm() < 1e-7);
   CHECK(s->counters().jacobian_evaluations >= s->counters().steps_accepted);
 }

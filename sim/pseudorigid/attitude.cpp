@@ -1,0 +1,50 @@
+#include "sim/pseudorigid/attitude.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+namespace pronk::pseudorigid {
+
+BodyFrame fit_attitude(const std::array<Eigen::Vector3d, 4>& x,
+                       const std::array<Eigen::Vector3d, 4>& local) {
+  BodyFrame f;
+  for (const auto& xi : x) f.com += 0.25 * xi;
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 4; ++i) m += (x[i] - f.com) * local[i].transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) d(2, 2) = -1.0;
+  f.rotation = svd.matrixU() * d * svd.matrixV().transpose();
+  f.stretch = f.rotation.transpose() * m;
+  f.stretch = 0.5 * (f.stretch + f.stretch.transpose()).eval();
+  return f;
+}
+
+Eigen::Vector3d fit_angular_velocity(const std::array<Eigen::Vector3d, 4>& x,
+                                     const std::array<Eigen::Vector3d, 4>& v) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero(), vc = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    c += 0.25 * x[i];
+    vc += 0.25 * v[i];
+  }
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d r = x[i] - c;
+    a += r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
+    b += r.cross(v[i] - vc);
+  }
+  return a.fullPivLu().solve(b);
+}
+
+std::array<Eigen::Matrix3d, 4> attitude_derivative(const BodyFrame& frame,
+                                                   const std::array<Eigen::Vector3d, 4>& local) {
+  const Eigen::Matrix3d& s = frame.stretch;
+  const Eigen::Matrix3d a = s.trace() * Eigen::Matrix3d::Identity() - s;
+  const Eigen::Matrix3d a_inv = a.inverse();
+  std::array<Eigen::Matrix3d, 4> out;
+  for (int k = 0; k < 4; ++k) out[k] = a_inv * skew(local[k]) * frame.rotation.transpose();
+  return out;
+}
+
+}  // namespace pronk::pseudorigid

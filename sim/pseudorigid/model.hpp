@@ -1,0 +1,87 @@
+// The pseudo-rigid mechanism model (seed ch. 3-4, SPEC 3): point masses with
+// position and momentum states, bodies made of four equal masses held by six
+// stiff internal springs, reference and ghost points that move with a body,
+// connections, constraint surfaces, forces and actuators. A Mechanism is built
+// once (by the JSON loader or in code with the helpers of builder.hpp), then it
+// is const and shareable: every run keeps its own state (system.hpp,
+// simulator.hpp).
+//
+// State layout: mass j owns y[6j .. 6j+2] = position [m] and
+// y[6j+3 .. 6j+5] = momentum [N s]. Ghost points, reference points, anchors and
+// grounded surfaces contribute no states.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/ode/solver.hpp"
+#include "sim/pseudorigid/body.hpp"
+#include "sim/pseudorigid/connection.hpp"
+#include "sim/pseudorigid/force.hpp"
+#include "sim/pseudorigid/ghost_point.hpp"
+#include "sim/pseudorigid/mass.hpp"
+#include "sim/pseudorigid/node.hpp"
+#include "sim/pseudorigid/surface.hpp"
+
+namespace pronk::pseudorigid {
+
+/// Which error norm the adaptive solvers use.
+enum class ErrorNorm {
+  kState,  ///< per-state RMS norm over every position and momentum
+  kBody,   ///< body-level: CoM position/velocity, attitude, angular velocity of each
+           ///< body, and the states of free masses; internal vibration is not measured
+};
+
+/// How a run is integrated and monitored.
+struct SimulationOptions {
+  double t_end = 1.0;             ///< simulated time [s]
+  double output_interval = 1e-2;  ///< sampling of the trajectory outputs [s]
+  ode::SolverOptions solver = default_solver();
+  ErrorNorm error_norm = ErrorNorm::kState;
+  bool euler_313 = false;  ///< attitude output as 3-1-3 (else 1-2-3) Euler angles
+  double energy_blowup_factor =
+      10;                       ///< energy drift above this times the energy scale = divergence
+  bool check_jacobian = false;  ///< compare the analytic Jacobian with central differences at t=0
+  double zero_length_epsilon = 1e-12;  ///< connection length below which no direction exists [m]
+
+  static ode::SolverOptions default_solver() {
+    ode::SolverOptions s;
+    s.method = ode::Method::kRodas4;
+    s.rtol = 1e-6;
+    s.atol = 1e-8;
+    s.h_max = 0.1;
+    return s;
+  }
+  /// Checks every field; on failure writes "field: value: rule" into *error.
+  bool validate(std::string* error) const;
+};
+
+/// The immutable description of a mechanism.
+struct Mechanism {
+  std::string name = "mechanism";
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< acceleration of gravity on every mass [m/s^2]
+  std::vector<Mass> masses;
+  std::vector<Body> bodies;
+  std::vector<Anchor> anchors;
+  std::vector<GhostPoint> ghost_points;
+  std::vector<ReferencePoint> reference_points;
+  std::vector<Connection> connections;
+  std::vector<Surface> surfaces;
+  std::vector<WorldForce> world_forces;
+  std::vector<BodyForce> body_forces;
+  std::vector<ImpulseActuator> impulse_actuators;
+  SimulationOptions simulation;
+
+  int dimension() const { return 6 * static_cast<int>(masses.size()); }
+  double total_mass() const;
+  /// The initial state vector.
+  Eigen::VectorXd initial_state() const;
+  /// Structural checks (indices in range, positive masses, ...); message on failure.
+  bool validate(std::string* error) const;
+  /// Name of a node for output headers.
+  std::string node_name(const NodeRef& n) const;
+};
+
+}  // namespace pronk::pseudorigid

@@ -1,0 +1,191 @@
+#include "sim/pseudorigid/simulator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "sim/pseudorigid/system.hpp"
+
+namespace pronk::pseudorigid {
+
+std::string_view to_string(RunStatus s) {
+  return s == RunStatus::kCompleted ? "completed" : "diverged";
+}
+
+namespace {
+
+/// Times at which a time-windowed force switches, inside (0, t_end), plus t_end.
+std::vector<double> breakpoints(const Mechanism& m) {
+  const double te = m.simulation.t_end;
+  std::vector<double> b{te};
+  auto add = [&](double t) {
+    if (t > 0.0 && t < te && std::isfinite(t)) b.push_back(t);
+  };
+  for (const auto& f : m.body_forces) {
+    add(f.t_start);
+    add(f.t_end);
+  }
+  for (const auto& a : m.impulse_actuators) {
+    add(a.t_start);
+    add(a.t_start + a.duration());
+  }
+  std::sort(b.begin(), b.end());
+  b.erase(std::unique(b.begin(), b.end()), b.end());
+  return b;
+}
+
+}  // namespace
+
+RunSummary simulate(const Mechanism& m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunSummary out;
+  const SimulationOptions& opt = m.simulation;
+  MechanismSystem sys(m);
+  const int n = sys.dimension();
+  ode::Vec y = m.initial_state();
+  if (opt.check_jacobian) out.jacobian_check_error = jacobian_check(sys, 0.0, y);
+
+  const std::vector<double> bps = breakpoints(m);
+  sys.set_segment_time(0.5 * bps.front());
+  auto stepper = ode::make_stepper(opt.solver, n);
+  stepper->reset(sys, 0.0, y);
+  out.max_surface_force.assign(m.surfaces.size(), 0.0);
+
+  double dissipated = 0.0, work = 0.0;
+  auto record = [&](double t, const ode::Vec& ys) {
+    out.t.push_back(t);
+    out.y.push_back(ys);
+    out.energies.push_back(sys.energies(ys));
+    out.dissipated.push_back(dissipated);
+    out.actuator_work.push_back(work);
+  };
+  auto monitor = [&](const ode::Vec& ys) {
+    const StateMonitors mon = sys.monitors(ys);
+    out.max_strain = std::max(out.max_strain, mon.max_strain);
+    out.max_penetration = std::max(out.max_penetration, mon.max_penetration);
+    const std::vector<double> sf = sys.surface_forces(ys);
+    for (size_t i = 0; i < sf.size(); ++i) {
+      out.max_surface_force[i] = std::max(out.max_surface_force[i], sf[i]);
+    }
+  };
+  record(0.0, y);
+  monitor(y);
+  const Energies e0 = out.energies.front();
+  const double balance0 = e0.total();
+  {
+    // Energy scale: motion and stored energy, plus lifting the whole mass over the scene size.
+    Eigen::Vector3d lo = m.masses[0].position, hi = lo;
+    for (const Mass& ms : m.masses) {
+      lo = lo.cwiseMin(ms.position);
+      hi = hi.cwiseMax(ms.position);
+    }
+    for (const Anchor& a : m.anchors) {
+      lo = lo.cwiseMin(a.position);
+      hi = hi.cwiseMax(a.position);
+    }
+    for (const Surface& s : m.surfaces) {
+      if (s.body >= 0) continue;
+      lo = lo.cwiseMin(s.point);
+      hi = hi.cwiseMax(s.point);
+    }
+    out.energy_scale = e0.kinetic + e0.internal + e0.leg + e0.other + e0.contact +
+                       m.total_mass() * m.gravity.norm() * (hi - lo).norm() + 1e-9;
+  }
+  const double blowup = opt.energy_blowup_factor * out.energy_scale;
+
+  // Gauss-Legendre 3-point nodes and weights on [0, 1].
+  const double gl_s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
+  const double gl_w[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+  ode::Vec yq(n);
+  double next_out = opt.output_interval;
+  long steps = 0;
+  bool diverged = false;
+  char buf[256];
+  auto diverge = [&](const std::string& why) {
+    out.status = RunStatus::kDiverged;
+    out.reason = why;
+    diverged = true;
+  };
+  double t = 0.0;
+  for (size_t bi = 0; bi < bps.size() && !diverged; ++bi) {
+    const double bp = bps[bi];
+    if (bi > 0) {
+      sys.set_segment_time(0.5 * (t + bp));
+      stepper->reset(sys, t, stepper->y());
+    }
+    while (stepper->t() < bp) {
+      const ode::StepStatus st = stepper->step(sys, bp);
+      ++steps;
+      if (st != ode::StepStatus::kOk) {
+        std::snprintf(buf, sizeof buf, "%s at t = %.9g s (step %.3g s)",
+                      st == ode::StepStatus::kNonFinite ? "non-finite state" : "step-size collapse",
+                      stepper->t(), stepper->h());
+        diverge(buf);
+        break;
+      }
+      const double ta = stepper->t_prev(), tb = stepper->t();
+      const ode::Vec& yb = stepper->y();
+      if (!yb.allFinite()) {
+        std::snprintf(buf, sizeof buf, "non-finite state at t = %.9g s", tb);
+        diverge(buf);
+        break;
+      }
+      for (int q = 0; q < 3; ++q) {
+        stepper->dense(ta + gl_s[q] * (tb - ta), yq);
+        const PowerFlows p = sys.power(yq);
+        dissipated += gl_w[q] * (tb - ta) * p.dissipated;
+        work += gl_w[q] * (tb - ta) * p.actuator;
+      }
+      monitor(yb);
+      while (next_out <= tb * (1.0 + 1e-12) && next_out <= opt.t_end * (1.0 + 1e-12)) {
+        stepper->dense(std::min(next_out, tb), yq);
+        record(next_out, yq);
+        next_out = opt.output_interval * static_cast<double>(out.t.size());
+      }
+      const double balance = sys.energies(yb).total() + dissipated - work;
+      const double drift = std::abs(balance - balance0);
+      if (!std::isfinite(balance) || drift > blowup) {
+        std::snprintf(buf, sizeof buf,
+                      "energy blow-up at t = %.9g s: energy balance drifted by %.3g J (scale %.3g "
+                      "J); the solver is beyond its stability limit or the step is too large",
+                      tb, drift, out.energy_scale);
+        diverge(buf);
+        break;
+      }
+      if (steps >= opt.solver.max_steps) {
+        std::snprintf(buf, sizeof buf, "step limit %ld reached at t = %.9g s", opt.solver.max_steps,
+                      tb);
+        diverge(buf);
+        break;
+      }
+    }
+    t = stepper->t();
+  }
+  // Samples only hold finite values: a diverged run keeps the samples before divergence.
+  while (!out.y.empty() &&
+         !(out.y.back().allFinite() && std::isfinite(out.energies.back().total()))) {
+    out.t.pop_back();
+    out.y.pop_back();
+    out.energies.pop_back();
+    out.dissipated.pop_back();
+    out.actuator_work.pop_back();
+  }
+  for (size_t i = 0; i < out.t.size(); ++i) {
+    const double b = out.energies[i].total() + out.dissipated[i] - out.actuator_work[i];
+    out.energy_drift = std::max(out.energy_drift, std::abs(b - balance0));
+  }
+  out.t_reached = diverged ? (out.t.empty() ? 0.0 : out.t.back()) : stepper->t();
+  out.counters = stepper->counters();
+  out.zero_length_triggers = sys.zero_length_triggers();
+  if (!std::isfinite(out.max_strain)) out.max_strain = 1e300;
+  if (!std::isfinite(out.max_penetration)) out.max_penetration = 1e300;
+  for (double& f : out.max_surface_force) {
+    if (!std::isfinite(f)) f = 1e300;
+  }
+  if (!std::isfinite(out.jacobian_check_error)) out.jacobian_check_error = 1e300;
+  out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace pronk::pseudorigid

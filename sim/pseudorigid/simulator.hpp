@@ -1,0 +1,49 @@
+// Runs a mechanism: integration with the chosen solver, sampling on a fixed
+// output grid via dense output, energy accounting, accuracy monitors and
+// divergence detection (non-finite state, energy blow-up, step-size
+// collapse). Divergence ends the run with a status and a reason; every number
+// in the result is finite.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/ode/solver.hpp"
+#include "sim/pseudorigid/energy.hpp"
+#include "sim/pseudorigid/model.hpp"
+
+namespace pronk::pseudorigid {
+
+enum class RunStatus { kCompleted, kDiverged };
+std::string_view to_string(RunStatus s);
+
+struct RunSummary {
+  RunStatus status = RunStatus::kCompleted;
+  std::string reason = "reached t_end";
+  // Trajectory samples on the output grid (t = 0, dt, ..., last time reached).
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> y;
+  std::vector<Energies> energies;
+  std::vector<double> dissipated;     ///< energy dissipated up to t [J]
+  std::vector<double> actuator_work;  ///< work done by actuators and body forces up to t [J]
+  // Cost.
+  ode::SolverCounters counters;
+  double wall_time = 0.0;  ///< [s]
+  // Accuracy monitors.
+  double energy_scale = 0.0;              ///< reference energy of the scene [J]
+  double energy_drift = 0.0;              ///< max |balance(t) - balance(0)| [J]
+  double max_strain = 0.0;                ///< largest internal strain seen
+  double max_penetration = 0.0;           ///< deepest penetration / constraint violation [m]
+  long zero_length_triggers = 0;          ///< RHS evaluations in which the zero-length rule fired
+  std::vector<double> max_surface_force;  ///< per surface [N]
+  double jacobian_check_error = -1.0;     ///< relative, when requested; -1 = not run
+  double t_reached = 0.0;                 ///< [s]
+};
+
+/// Simulates m from t = 0 to m.simulation.t_end.
+RunSummary simulate(const Mechanism& m);
+
+}  // namespace pronk::pseudorigid

@@ -1,0 +1,37 @@
+// Constraint surfaces (seed 4.2.5). Each constrained node is held by a stiff
+// zero-rest-length spring (plus optional damper) to its projection on the
+// surface:
+//   plane  one-sided contact: F = -k (n.r) n - b (n.v) n while n.r < 0
+//   line   a prismatic joint:  F = -k (1 - d d^T) r - b (1 - d d^T) v
+//   point  a pivot:            F = -k r - b v
+// with r = x_node - x_surface, v the relative velocity. A surface is grounded
+// (its point and direction fixed in the world; no states) or attached to a body
+// (its point is one of the body's ghost points, its direction turns with the
+// body, and the reaction acts on the body through that ghost point).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/pseudorigid/node.hpp"
+
+namespace pronk::pseudorigid {
+
+enum class SurfaceType { kPlane, kLine, kPoint };
+
+struct Surface {
+  std::string name;
+  SurfaceType type = SurfaceType::kPlane;
+  int body = -1;   ///< attached body, -1 when grounded
+  int ghost = -1;  ///< attached: ghost point that carries the surface's point
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();       ///< grounded: a point on it, world [m]
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit normal (plane) or direction
+                                                         ///< (line); body frame when attached
+  std::vector<NodeRef> nodes;                            ///< constrained nodes
+  double stiffness = 1e5;                                ///< [N/m]
+  double damping = 0.0;                                  ///< [N s/m]
+};
+
+}  // namespace pronk::pseudorigid

@@ -1,0 +1,501 @@
+#include "sim/pseudorigid/system.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pronk::pseudorigid {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+Vector3d seg(const ode::Vec& y, int i) { return y.segment<3>(i); }
+
+}  // namespace
+
+MechanismSystem::MechanismSystem(const Mechanism& m)
+    : m_(m),
+      frames_(m.bodies.size()),
+      dframes_(m.bodies.size()),
+      force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))) {
+  for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
+}
+
+void MechanismSystem::update_frames(const ode::Vec& y, bool derivatives) const {
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const Body& body = m_.bodies[b];
+    std::array<Vector3d, 4> x;
+    for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
+    frames_[b] = fit_attitude(x, body.local);
+    if (derivatives) dframes_[b] = attitude_derivative(frames_[b], body.local);
+  }
+}
+
+const std::vector<BodyFrame>& MechanismSystem::frames(const ode::Vec& y) const {
+  update_frames(y, false);
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    Vector3d v = Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) v += 0.25 * seg(y, 6 * (m_.bodies[b].first_mass + i) + 3);
+    frames_[b].com_velocity = v / (0.25 * m_.bodies[b].mass);  // equal masses m/4
+  }
+  return frames_;
+}
+
+Vector3d MechanismSystem::node_position(const NodeRef& n, const ode::Vec& y) const {
+  switch (n.kind) {
+    case NodeRef::Kind::kMass:
+      return seg(y, 6 * n.index);
+    case NodeRef::Kind::kGhost: {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      const int f = m_.bodies[g.body].first_mass;
+      Vector3d x = Vector3d::Zero();
+      for (int i = 0; i < 4; ++i) x += g.weights[i] * seg(y, 6 * (f + i));
+      return x;
+    }
+    case NodeRef::Kind::kAnchor:
+      return m_.anchors[n.index].position;
+  }
+  return Vector3d::Zero();
+}
+
+Vector3d MechanismSystem::node_velocity(const NodeRef& n, const ode::Vec& y) const {
+  switch (n.kind) {
+    case NodeRef::Kind::kMass:
+      return seg(y, 6 * n.index + 3) * inv_mass_[n.index];
+    case NodeRef::Kind::kGhost: {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      const int f = m_.bodies[g.body].first_mass;
+      Vector3d v = Vector3d::Zero();
+      for (int i = 0; i < 4; ++i) v += g.weights[i] * inv_mass_[f + i] * seg(y, 6 * (f + i) + 3);
+      return v;
+    }
+    case NodeRef::Kind::kAnchor:
+      return Vector3d::Zero();
+  }
+  return Vector3d::Zero();
+}
+
+Vector3d MechanismSystem::reference_position(int i, const ode::Vec& y) const {
+  const ReferencePoint& r = m_.reference_points[i];
+  const Body& body = m_.bodies[r.body];
+  std::array<Vector3d, 4> x;
+  for (int k = 0; k < 4; ++k) x[k] = seg(y, 6 * (body.first_mass + k));
+  const BodyFrame f = fit_attitude(x, body.local);
+  return f.com + f.rotation * r.local;
+}
+
+Vector3d MechanismSystem::body_omega(int b, const ode::Vec& y) const {
+  const Body& body = m_.bodies[b];
+  std::array<Vector3d, 4> x, v;
+  for (int k = 0; k < 4; ++k) {
+    x[k] = seg(y, 6 * (body.first_mass + k));
+    v[k] = seg(y, 6 * (body.first_mass + k) + 3) * inv_mass_[body.first_mass + k];
+  }
+  return fit_angular_velocity(x, v);
+}
+
+int MechanismSystem::transfers(const NodeRef& n, std::array<Transfer, 4>& out) const {
+  switch (n.kind) {
+    case NodeRef::Kind::kMass:
+      out[0] = {n.index, Matrix3d::Identity()};
+      return 1;
+    case NodeRef::Kind::kGhost: {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      const Matrix3d& r = frames_[g.body].rotation;
+      for (int i = 0; i < 4; ++i) {
+        out[i] = {m_.bodies[g.body].first_mass + i, r * g.transfer[i] * r.transpose()};
+      }
+      return 4;
+    }
+    case NodeRef::Kind::kAnchor:
+      return 0;
+  }
+  return 0;
+}
+
+void MechanismSystem::apply(const NodeRef& n, const Vector3d& f) const {
+  if (n.kind == NodeRef::Kind::kMass) {
+    force_.segment<3>(3 * n.index) += f;
+    return;
+  }
+  std::array<Transfer, 4> tr;
+  const int k = transfers(n, tr);
+  for (int i = 0; i < k; ++i) force_.segment<3>(3 * tr[i].mass) += tr[i].t * f;
+}
+
+MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, const NodeRef& n,
+                                                           const ode::Vec& y) const {
+  SurfaceEval e;
+  Vector3d p, vp;
+  if (s.body >= 0) {
+    const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
+    p = node_position(g, y);
+    vp = node_velocity(g, y);
+    e.dir = frames_[s.body].rotation * s.direction;
+  } else {
+    p = s.point;
+    vp = Vector3d::Zero();
+    e.dir = s.direction;
+  }
+  e.r = node_position(n, y) - p;
+  e.v = node_velocity(n, y) - vp;
+  switch (s.type) {
+    case SurfaceType::kPlane: {
+      const double h = e.dir.dot(e.r);
+      if (h >= 0.0) return e;
+      e.proj = e.dir * e.dir.transpose();
+      e.penetration = -h;
+      break;
+    }
+    case SurfaceType::kLine:
+      e.proj = Matrix3d::Identity() - e.dir * e.dir.transpose();
+      e.penetration = (e.proj * e.r).norm();
+      break;
+    case SurfaceType::kPoint:
+      e.proj = Matrix3d::Identity();
+      e.penetration = e.r.norm();
+      break;
+  }
+  e.active = true;
+  e.force = -e.proj * (s.stiffness * e.r + s.damping * e.v);
+  return e;
+}
+
+void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
+  update_frames(y, false);
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
+  bool zero_length = false;
+  for (const Connection& c : m_.connections) {
+    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
+    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    zero_length = zero_length || cf.zero_length;
+    apply(c.a, cf.force);
+    apply(c.b, -cf.force);
+  }
+  if (zero_length) ++zero_length_;
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval e = eval_surface(s, n, y);
+      if (!e.active) continue;
+      apply(n, e.force);
+      if (s.body >= 0) apply(NodeRef{NodeRef::Kind::kGhost, s.ghost}, -e.force);
+    }
+  }
+  for (const WorldForce& f : m_.world_forces) apply(f.node, f.force);
+  for (const BodyForce& f : m_.body_forces) {
+    if (active(f.t_start, f.t_end)) apply(f.node, frames_[f.body].rotation * f.force);
+  }
+  for (const ImpulseActuator& a : m_.impulse_actuators) {
+    if (active(a.t_start, a.t_start + a.duration())) {
+      apply(a.node, frames_[a.body].rotation * (a.force * a.direction));
+    }
+  }
+  for (int j = 0; j < nm; ++j) {
+    dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
+    dydt.segment<3>(6 * j + 3) = force_.segment<3>(3 * j);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Jacobian
+
+void MechanismSystem::add_block(int row, int col, const Matrix3d& b) const {
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (b(i, k) != 0.0) triplets_.emplace_back(row + i, col + k, b(i, k));
+    }
+  }
+}
+
+/// d(force on target)/d(state) for a force depending on the position (kx) and
+/// velocity (kv) of `source`.
+void MechanismSystem::jac_force(const NodeRef& target, const NodeRef& source, const Matrix3d& kx,
+                                const Matrix3d& kv) const {
+  std::array<Transfer, 4> tr;
+  const int nt = transfers(target, tr);
+  int src_mass[4];
+  double src_w[4];
+  int ns = 0;
+  if (source.kind == NodeRef::Kind::kMass) {
+    src_mass[0] = source.index;
+    src_w[0] = 1.0;
+    ns = 1;
+  } else if (source.kind == NodeRef::Kind::kGhost) {
+    const GhostPoint& g = m_.ghost_points[source.index];
+    for (int i = 0; i < 4; ++i) {
+      src_mass[i] = m_.bodies[g.body].first_mass + i;
+      src_w[i] = g.weights[i];
+    }
+    ns = 4;
+  }
+  for (int a = 0; a < nt; ++a) {
+    const Matrix3d tx = tr[a].t * kx, tv = tr[a].t * kv;
+    for (int b = 0; b < ns; ++b) {
+      const int k = src_mass[b];
+      add_block(6 * tr[a].mass + 3, 6 * k, src_w[b] * tx);
+      add_block(6 * tr[a].mass + 3, 6 * k + 3, (src_w[b] * inv_mass_[k]) * tv);
+    }
+  }
+}
+
+/// d(force on target)/d(x) for a force that changes by d * omega_body of `body`.
+void MechanismSystem::jac_rotation(const NodeRef& target, int body, const Matrix3d& d) const {
+  std::array<Transfer, 4> tr;
+  const int nt = transfers(target, tr);
+  const int f = m_.bodies[body].first_mass;
+  for (int a = 0; a < nt; ++a) {
+    const Matrix3d td = tr[a].t * d;
+    for (int k = 0; k < 4; ++k) add_block(6 * tr[a].mass + 3, 6 * (f + k), td * dframes_[body][k]);
+  }
+}
+
+/// Rotation dependence of the ghost-point transfer itself: F_i = R G_i R^T F.
+void MechanismSystem::jac_transfer(const NodeRef& target, const Vector3d& force) const {
+  if (target.kind != NodeRef::Kind::kGhost) return;
+  const GhostPoint& g = m_.ghost_points[target.index];
+  const Matrix3d& r = frames_[g.body].rotation;
+  const Vector3d fb = r.transpose() * force;
+  const int f = m_.bodies[g.body].first_mass;
+  for (int i = 0; i < 4; ++i) {
+    const Matrix3d d = r * (g.transfer[i] * skew(fb) - skew(g.transfer[i] * fb));
+    for (int k = 0; k < 4; ++k) add_block(6 * (f + i) + 3, 6 * (f + k), d * dframes_[g.body][k]);
+  }
+}
+
+void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
+                               Eigen::SparseMatrix<double>& jac) const {
+  update_frames(y, true);
+  triplets_.clear();
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) {
+    for (int i = 0; i < 3; ++i) triplets_.emplace_back(6 * j + i, 6 * j + 3 + i, inv_mass_[j]);
+  }
+  for (const Connection& c : m_.connections) {
+    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
+    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    jac_force(c.a, c.a, cf.d_dx, cf.d_dv);
+    jac_force(c.a, c.b, -cf.d_dx, -cf.d_dv);
+    jac_force(c.b, c.a, -cf.d_dx, -cf.d_dv);
+    jac_force(c.b, c.b, cf.d_dx, cf.d_dv);
+    jac_transfer(c.a, cf.force);
+    jac_transfer(c.b, -cf.force);
+  }
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval e = eval_surface(s, n, y);
+      if (!e.active) continue;
+      const Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
+      jac_force(n, n, kx, kv);
+      if (s.body < 0) continue;
+      const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
+      jac_force(n, g, -kx, -kv);
+      jac_force(g, n, -kx, -kv);
+      jac_force(g, g, kx, kv);
+      jac_transfer(g, -e.force);
+      if (s.type != SurfaceType::kPoint) {
+        const Vector3d q = s.stiffness * e.r + s.damping * e.v;
+        const double sign = s.type == SurfaceType::kPlane ? 1.0 : -1.0;
+        const Matrix3d dm = sign * (e.dir.dot(q) * Matrix3d::Identity() + e.dir * q.transpose()) *
+                            frames_[s.body].rotation * skew(s.direction);
+        jac_rotation(n, s.body, dm);
+        jac_rotation(g, s.body, -dm);
+      }
+    }
+  }
+  for (const WorldForce& f : m_.world_forces) jac_transfer(f.node, f.force);
+  auto body_force_jac = [&](const NodeRef& node, int body, const Vector3d& fb) {
+    const Matrix3d& r = frames_[body].rotation;
+    jac_rotation(node, body, -r * skew(fb));
+    jac_transfer(node, r * fb);
+  };
+  for (const BodyForce& f : m_.body_forces) {
+    if (active(f.t_start, f.t_end)) body_force_jac(f.node, f.body, f.force);
+  }
+  for (const ImpulseActuator& a : m_.impulse_actuators) {
+    if (active(a.t_start, a.t_start + a.duration())) {
+      body_force_jac(a.node, a.body, a.force * a.direction);
+    }
+  }
+  const int n = dimension();
+  jac.resize(n, n);
+  jac.setFromTriplets(triplets_.begin(), triplets_.end());
+}
+
+// ---------------------------------------------------------------------------
+// Error norm, energies, monitors
+
+double MechanismSystem::error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1,
+                                   double rtol, double atol) const {
+  double sum = 0.0;
+  long count = 0;
+  auto add = [&](double e, double scale) {
+    const double q = e / (atol + rtol * scale);
+    sum += q * q;
+    ++count;
+  };
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) {
+    if (m_.masses[j].body >= 0 || m_.masses[j].dummy_of >= 0) continue;
+    for (int i = 0; i < 6; ++i)
+      add(err[6 * j + i], std::max(std::abs(y0[6 * j + i]), std::abs(y1[6 * j + i])));
+  }
+  for (const Body& b : m_.bodies) {
+    Vector3d c0 = Vector3d::Zero(), c1 = Vector3d::Zero(), dc = Vector3d::Zero();
+    Vector3d p0 = Vector3d::Zero(), p1 = Vector3d::Zero(), dp = Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+      const int s = 6 * (b.first_mass + i);
+      c0 += 0.25 * seg(y0, s);
+      c1 += 0.25 * seg(y1, s);
+      dc += 0.25 * seg(err, s);
+      p0 += seg(y0, s + 3);
+      p1 += seg(y1, s + 3);
+      dp += seg(err, s + 3);
+    }
+    // Small rotation and angular-velocity errors: least-squares fits of the
+    // mass errors relative to the CoM, using the current arm r_i.
+    Matrix3d g = Matrix3d::Zero();
+    Vector3d rot = Vector3d::Zero(), rate = Vector3d::Zero(), w = Vector3d::Zero();
+    const Vector3d vc = p1 / b.mass;
+    for (int i = 0; i < 4; ++i) {
+      const int s = 6 * (b.first_mass + i);
+      const Vector3d r = seg(y1, s) - c1;
+      g += r.squaredNorm() * Matrix3d::Identity() - r * r.transpose();
+      rot += r.cross(seg(err, s) - dc);
+      rate += r.cross((seg(err, s + 3) - 0.25 * dp) * inv_mass_[b.first_mass + i]);
+      w += r.cross(seg(y1, s + 3) * inv_mass_[b.first_mass + i] - vc);
+    }
+    const Matrix3d gi = g.inverse();
+    const Vector3d dtheta = gi * rot, domega = gi * rate, omega = gi * w;
+    const double vscale = std::max(p0.norm(), p1.norm()) / b.mass;
+    for (int i = 0; i < 3; ++i) {
+      add(dc[i], std::max(std::abs(c0[i]), std::abs(c1[i])));
+      add(dp[i] / b.mass, vscale);
+      add(dtheta[i], 1.0);
+      add(domega[i], omega.norm());
+    }
+  }
+  return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+}
+
+Energies MechanismSystem::energies(const ode::Vec& y) const {
+  update_frames(y, false);
+  Energies e;
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) {
+    e.kinetic += 0.5 * seg(y, 6 * j + 3).squaredNorm() * inv_mass_[j];
+    e.gravitational -= m_.masses[j].mass * m_.gravity.dot(seg(y, 6 * j));
+  }
+  for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
+  for (const Connection& c : m_.connections) {
+    const double u = connection_energy(c, node_position(c.a, y) - node_position(c.b, y));
+    switch (c.kind) {
+      case ConnectionClass::kInternal:
+        e.internal += u;
+        break;
+      case ConnectionClass::kLeg:
+        e.leg += u;
+        break;
+      default:
+        e.other += u;
+        break;
+    }
+  }
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval ev = eval_surface(s, n, y);
+      if (ev.active) e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
+    }
+  }
+  return e;
+}
+
+PowerFlows MechanismSystem::power(const ode::Vec& y) const {
+  update_frames(y, false);
+  PowerFlows p;
+  for (const Connection& c : m_.connections) {
+    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
+    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    p.dissipated -= cf.dissipative.dot(v);
+    if (c.kind == ConnectionClass::kActuator) p.actuator += cf.force.dot(v);
+  }
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval e = eval_surface(s, n, y);
+      if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v);
+    }
+  }
+  for (const BodyForce& f : m_.body_forces) {
+    if (active(f.t_start, f.t_end)) {
+      p.actuator += (frames_[f.body].rotation * f.force).dot(node_velocity(f.node, y));
+    }
+  }
+  for (const ImpulseActuator& a : m_.impulse_actuators) {
+    if (active(a.t_start, a.t_start + a.duration())) {
+      p.actuator +=
+          (frames_[a.body].rotation * (a.force * a.direction)).dot(node_velocity(a.node, y));
+    }
+  }
+  return p;
+}
+
+StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
+  update_frames(y, false);
+  StateMonitors mon;
+  for (const Connection& c : m_.connections) {
+    if (c.kind != ConnectionClass::kInternal || c.rest_length <= 0.0) continue;
+    const double l = (node_position(c.a, y) - node_position(c.b, y)).norm();
+    mon.max_strain = std::max(mon.max_strain, std::abs(l - c.rest_length) / c.rest_length);
+  }
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval e = eval_surface(s, n, y);
+      if (e.active) mon.max_penetration = std::max(mon.max_penetration, e.penetration);
+    }
+  }
+  return mon;
+}
+
+std::vector<double> MechanismSystem::surface_forces(const ode::Vec& y) const {
+  update_frames(y, false);
+  std::vector<double> out;
+  for (const Surface& s : m_.surfaces) {
+    double f = 0.0;
+    for (const NodeRef& n : s.nodes) {
+      const SurfaceEval e = eval_surface(s, n, y);
+      if (e.active) f = std::max(f, e.force.norm());
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+double jacobian_check(const MechanismSystem& sys, double t, const ode::Vec& y, int* worst_row,
+                      int* worst_col) {
+  const int n = sys.dimension();
+  Eigen::SparseMatrix<double> js;
+  sys.jacobian(t, y, js);
+  const Eigen::MatrixXd ja(js);
+  Eigen::MatrixXd jf(n, n);
+  ode::Vec yp = y, fp(n), fm(n);
+  for (int i = 0; i < n; ++i) {
+    const double h = 1e-6 * std::max(1e-3, std::abs(y[i]));
+    yp[i] = y[i] + h;
+    sys.rhs(t, yp, fp);
+    yp[i] = y[i] - h;
+    sys.rhs(t, yp, fm);
+    yp[i] = y[i];
+    jf.col(i) = (fp - fm) / (2.0 * h);
+  }
+  const double scale = std::max(1.0, ja.cwiseAbs().maxCoeff());
+  Eigen::Index r = 0, c = 0;
+  const double worst = (ja - jf).cwiseAbs().maxCoeff(&r, &c) / scale;
+  if (worst_row) *worst_row = static_cast<int>(r);
+  if (worst_col) *worst_col = static_cast<int>(c);
+  return worst;
+}
+
+}  // namespace pronk::pseudorigid

@@ -1,0 +1,105 @@
+// The mechanism as an ODE system: right-hand side, analytic sparse Jacobian
+// (3x3 blocks per connection, surface and force, including the rotation
+// dependence of ghost-point transfer and body-relative directions), the
+// optional body-level error norm, energies and monitors. One object per run
+// (it holds scratch space and counters); the Mechanism it refers to is const.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "sim/ode/ode_system.hpp"
+#include "sim/pseudorigid/attitude.hpp"
+#include "sim/pseudorigid/energy.hpp"
+#include "sim/pseudorigid/model.hpp"
+
+namespace pronk::pseudorigid {
+
+/// Accuracy monitors of one state.
+struct StateMonitors {
+  double max_strain = 0.0;       ///< largest |l - l0| / l0 over internal springs
+  double max_penetration = 0.0;  ///< deepest plane penetration or constraint violation [m]
+};
+
+class MechanismSystem final : public ode::OdeSystem {
+ public:
+  explicit MechanismSystem(const Mechanism& m);
+
+  int dimension() const override { return m_.dimension(); }
+  void rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
+  bool has_jacobian() const override { return true; }
+  void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
+  bool autonomous() const override { return true; }  // time windows are handled by segment_time
+  bool has_error_norm() const override { return m_.simulation.error_norm == ErrorNorm::kBody; }
+  double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
+                    double atol) const override;
+
+  /// Time-windowed forces (body forces, impulse actuators) are on or off for a
+  /// whole integration segment: the simulator stops at every switch time and
+  /// calls this with a time inside the next segment [s].
+  void set_segment_time(double t) { segment_time_ = t; }
+
+  /// Body frames (attitude, CoM) at y; valid until the next call.
+  const std::vector<BodyFrame>& frames(const ode::Vec& y) const;
+  Eigen::Vector3d node_position(const NodeRef& n, const ode::Vec& y) const;
+  Eigen::Vector3d node_velocity(const NodeRef& n, const ode::Vec& y) const;
+  Eigen::Vector3d reference_position(int i, const ode::Vec& y) const;
+  /// World-frame angular velocity of body b [rad/s] (least squares).
+  Eigen::Vector3d body_omega(int b, const ode::Vec& y) const;
+
+  Energies energies(const ode::Vec& y) const;
+  PowerFlows power(const ode::Vec& y) const;
+  StateMonitors monitors(const ode::Vec& y) const;
+  /// Largest contact force magnitude of each surface at y [N].
+  std::vector<double> surface_forces(const ode::Vec& y) const;
+
+  /// RHS evaluations in which the zero-length rule fired.
+  long zero_length_triggers() const { return zero_length_; }
+
+ private:
+  struct Transfer {
+    int mass;
+    Eigen::Matrix3d t;  ///< force on the mass = t * force on the node
+  };
+  void update_frames(const ode::Vec& y, bool derivatives) const;
+  bool active(double t_start, double t_end) const {
+    return segment_time_ >= t_start && segment_time_ < t_end;
+  }
+  /// Adds F at node n into force_ (distributed for ghost points).
+  void apply(const NodeRef& n, const Eigen::Vector3d& f) const;
+  int transfers(const NodeRef& n, std::array<Transfer, 4>& out) const;
+  void add_block(int row, int col, const Eigen::Matrix3d& b) const;
+  void jac_force(const NodeRef& target, const NodeRef& source, const Eigen::Matrix3d& kx,
+                 const Eigen::Matrix3d& kv) const;
+  void jac_rotation(const NodeRef& target, int body, const Eigen::Matrix3d& d) const;
+  void jac_transfer(const NodeRef& target, const Eigen::Vector3d& f) const;
+  /// Surface force on node n with projector and rotation data; returns force.
+  struct SurfaceEval {
+    bool active = false;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d proj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+    double penetration = 0.0;
+  };
+  SurfaceEval eval_surface(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+
+  const Mechanism& m_;
+  double segment_time_ = 0.0;
+  mutable std::vector<BodyFrame> frames_;
+  mutable std::vector<std::array<Eigen::Matrix3d, 4>> dframes_;
+  mutable ode::Vec force_;
+  mutable std::vector<Eigen::Triplet<double>> triplets_;
+  mutable long zero_length_ = 0;
+  std::vector<double> inv_mass_;
+};
+
+/// Compares the analytic Jacobian at (t, y) with central differences of the
+/// RHS; returns the largest |J_analytic - J_fd| relative to max(1, |J|_max).
+double jacobian_check(const MechanismSystem& sys, double t, const ode::Vec& y,
+                      int* worst_row = nullptr, int* worst_col = nullptr);
+
+}  // namespace pronk::pseudorigid

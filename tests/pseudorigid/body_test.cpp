@@ -1,0 +1,136 @@
+// Body construction (seed case 12), Kabsch attitude, least-squares angular
+// velocity and ghost-point force transfer, against closed-form references.
+#include <cmath>
+#include <random>
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include "sim/math/rotation.hpp"
+#include "sim/pseudorigid/attitude.hpp"
+#include "sim/pseudorigid/body.hpp"
+#include "sim/pseudorigid/ghost_point.hpp"
+
+using namespace pronk::pseudorigid;
+
+namespace {
+
+Eigen::Matrix3d random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  return q.normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+TEST_CASE("case 12: 1e4 random valid inertia tensors are reproduced to 1e-9", "[pseudorigid]") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 10000; ++trial) {
+    // Valid principal moments: P_i > 0 second moments give I_i = P_j + P_k.
+    const Eigen::Vector3d p(1e-3 + u(rng), 1e-3 + u(rng), 1e-3 + u(rng));
+    const double scale = std::pow(10.0, -3.0 + 4.0 * u(rng));
+    Eigen::Vector3d l(p[1] + p[2], p[0] + p[2], p[0] + p[1]);
+    l *= scale;
+    Eigen::Matrix3d inertia = l.asDiagonal();
+    if (trial % 2 == 1) {  // rotated full tensor
+      const Eigen::Matrix3d r = random_rotation(rng);
+      inertia = r * inertia * r.transpose();
+      inertia = 0.5 * (inertia + inertia.transpose()).eval();
+    }
+    const double mass = 0.1 + 10.0 * u(rng);
+    std::array<Eigen::Vector3d, 4> local;
+    std::string err;
+    REQUIRE(construct_body(mass, inertia, &local, &err));
+    const Eigen::Matrix3d back = point_mass_inertia(mass, local);
+    worst = std::max(worst, (back - inertia).cwiseAbs().maxCoeff() / inertia.cwiseAbs().maxCoeff());
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const auto& r : local) c += r;
+    REQUIRE(c.norm() < 1e-12 * local[0].norm() * 4);
+  }
+  INFO("worst relative error " << worst);
+  CHECK(worst < 1e-9);
+}
+
+TEST_CASE("invalid inertia tensors are rejected with a clear reason", "[pseudorigid]") {
+  std::array<Eigen::Vector3d, 4> local;
+  std::string err;
+  CHECK_FALSE(construct_body(1.0, Eigen::Vector3d(1.0, 0.2, 0.3).asDiagonal(), &local, &err));
+  CHECK(err.find("triangle") != std::string::npos);
+  Eigen::Matrix3d ns = Eigen::Matrix3d::Identity();
+  ns(0, 1) = 0.1;
+  CHECK_FALSE(construct_body(1.0, ns, &local, &err));
+  CHECK(err.find("symmetric") != std::string::npos);
+  CHECK_FALSE(construct_body(1.0, Eigen::Vector3d(1.0, -1.0, 1.0).asDiagonal(), &local, &err));
+  CHECK_FALSE(construct_body(-1.0, Eigen::Matrix3d::Identity(), &local, &err));
+  CHECK_FALSE(construct_body(1.0, Eigen::Vector3d(1.0, 0.5, 0.5).asDiagonal(), &local, &err));
+  CHECK(err.find("flat") != std::string::npos);
+}
+
+TEST_CASE("Kabsch attitude recovers rotations; it stays a proper rotation when deformed",
+          "[pseudorigid]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::array<Eigen::Vector3d, 4> local;
+  std::string err;
+  REQUIRE(construct_body(2.0, Eigen::Vector3d(0.3, 0.4, 0.5).asDiagonal(), &local, &err));
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Matrix3d r = random_rotation(rng);
+    const Eigen::Vector3d c(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d w(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d vc(u(rng), u(rng), u(rng));
+    std::array<Eigen::Vector3d, 4> x, v, xd;
+    for (int i = 0; i < 4; ++i) {
+      x[i] = c + r * local[i];
+      v[i] = vc + w.cross(r * local[i]);
+      xd[i] = x[i] + 0.05 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    const BodyFrame f = fit_attitude(x, local);
+    CHECK((f.rotation - r).norm() < 1e-12);
+    CHECK((f.com - c).norm() < 1e-12);
+    CHECK((fit_angular_velocity(x, v) - w).norm() < 1e-12);
+    const BodyFrame fd = fit_attitude(xd, local);
+    CHECK(std::abs(fd.rotation.determinant() - 1.0) < 1e-12);
+    CHECK((fd.rotation.transpose() * fd.rotation - Eigen::Matrix3d::Identity()).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("ghost point: net force and moment equal the applied ones to 1e-12", "[pseudorigid]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> pos(0.05, 1.0);
+  double worst_f = 0.0, worst_m = 0.0, worst_x = 0.0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Vector3d p(pos(rng), pos(rng), pos(rng));
+    Eigen::Matrix3d inertia = Eigen::Vector3d(p[1] + p[2], p[0] + p[2], p[0] + p[1]).asDiagonal();
+    const Eigen::Matrix3d rb = random_rotation(rng);
+    inertia = rb * inertia * rb.transpose();
+    std::array<Eigen::Vector3d, 4> local;
+    std::string err;
+    REQUIRE(construct_body(1.0 + pos(rng), 0.5 * (inertia + inertia.transpose()), &local, &err));
+    GhostPoint g;
+    g.local = 2.0 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    prepare_ghost_point(local, &g);
+    const Eigen::Matrix3d r = random_rotation(rng);
+    const Eigen::Vector3d c(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d f = 100.0 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    Eigen::Vector3d net = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+    Eigen::Vector3d xg = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d fi = r * g.transfer[i] * r.transpose() * f;
+      net += fi;
+      moment += (r * local[i]).cross(fi);
+      xg += g.weights[i] * (c + r * local[i]);
+    }
+    const Eigen::Vector3d m_exp = (r * g.local).cross(f);
+    worst_f = std::max(worst_f, (net - f).norm() / f.norm());
+    worst_m =
+        std::max(worst_m, (moment - m_exp).norm() / (f.norm() * std::max(1.0, g.local.norm())));
+    worst_x = std::max(worst_x, (xg - (c + r * g.local)).norm());
+  }
+  INFO("force " << worst_f << " moment " << worst_m << " position " << worst_x);
+  CHECK(worst_f < 1e-12);
+  CHECK(worst_m < 1e-12);
+  CHECK(worst_x < 1e-12);
+}
