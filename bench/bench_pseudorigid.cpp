@@ -1,0 +1,67 @@
+// Benchmarks of the pseudo-rigid engine on the seed's satellite (four 1 kg
+// masses, six internal springs, 20 s): cost and omega error per solver,
+// tolerance and error norm, a stiffness sweep, and RODAS4 vs DOPRI5.
+// Prints one JSON document; wall times are medians of 3 runs.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "sim/pseudorigid/simulator.hpp"
+#include "sim/pseudorigid/system.hpp"
+#include "tests/pseudorigid/scenes.hpp"
+
+using namespace pronk::pseudorigid;
+namespace ts = pronk::pseudorigid::test_scenes;
+
+namespace {
+
+void run(const char* group, double k, pronk::ode::Method method, double tol, ErrorNorm norm,
+         bool* first) {
+  Mechanism m = ts::satellite(k, 20.0);
+  m.simulation.solver.method = method;
+  m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+  m.simulation.error_norm = norm;
+  std::vector<double> walls;
+  RunSummary r;
+  for (int rep = 0; rep < 3; ++rep) {
+    r = simulate(m);
+    walls.push_back(r.wall_time);
+  }
+  std::sort(walls.begin(), walls.end());
+  MechanismSystem sys(m);
+  const double err =
+      r.y.empty() ? -1.0
+                  : (sys.body_omega(0, r.y.back()) - ts::satellite_omega(r.t.back())).norm() /
+                        ts::satellite_omega(0).norm();
+  std::printf(
+      "%s    {\"group\": \"%s\", \"k\": %g, \"method\": \"%s\", \"tol\": %g, \"norm\": \"%s\", "
+      "\"status\": \"%s\", \"wall_s\": %.4g, \"steps\": %ld, \"rejected\": %ld, \"rhs\": %ld, "
+      "\"jacobians\": %ld, \"lu\": %ld, \"omega_rel_error\": %.3g, \"max_strain\": %.3g}",
+      *first ? "" : ",\n", group, k, std::string(pronk::ode::to_string(method)).c_str(), tol,
+      norm == ErrorNorm::kBody ? "body" : "state", std::string(to_string(r.status)).c_str(),
+      walls[1], r.counters.steps_accepted, r.counters.steps_rejected, r.counters.rhs_evaluations,
+      r.counters.jacobian_evaluations, r.counters.lu_factorizations, err, r.max_strain);
+  std::fflush(stdout);
+  *first = false;
+}
+
+}  // namespace
+
+int main() {
+  using pronk::ode::Method;
+  bool first = true;
+  std::printf("{\"benchmark\": \"pseudorigid satellite, 4 x 1 kg, 20 s\",\n  \"runs\": [\n");
+  for (double tol : {1e-4, 1e-6, 1e-8}) {
+    run("tolerance", 1e6, Method::kRodas4, tol, ErrorNorm::kState, &first);
+    run("tolerance", 1e6, Method::kRodas4, tol, ErrorNorm::kBody, &first);
+  }
+  run("explicit", 1e6, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
+  run("explicit", 1e6, Method::kDopri5, 1e-8, ErrorNorm::kState, &first);
+  for (double k : {1e4, 1e5, 1e6, 1e7, 1e8}) {
+    run("stiffness", k, Method::kRodas4, 1e-6, ErrorNorm::kState, &first);
+    run("stiffness_dopri5", k, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
+  }
+  std::printf("\n  ]\n}\n");
+  return 0;
+}
