@@ -156,8 +156,21 @@ int run_reproduce(const ReproduceArgs& args) {
     const auto it = e.aggregated.find(k);
     compare(k, v.get<double>(), it != e.aggregated.end() ? it->second : NAN);
   }
+  size_t compared = design.at("metrics").size() + 1;
+  if (study.validation && design.contains("validation") && design.at("validation").is_object()) {
+    const optimize::Evaluator val =
+        optimize::validation_evaluator(study, thread_count(args.threads));
+    const optimize::Evaluation ve = val.evaluate_full(unit);
+    const auto& rec = design.at("validation");
+    compare("validation cost", rec.at("cost").get<double>(), ve.cost);
+    for (const auto& [k, v] : rec.at("metrics").items()) {
+      const auto it = ve.aggregated.find(k);
+      compare("validation " + k, v.get<double>(), it != ve.aggregated.end() ? it->second : NAN);
+    }
+    compared += rec.at("metrics").size() + 1;
+  }
   std::printf("%s: %d of %zu values differ\n", bad ? "NOT REPRODUCED" : "reproduced", bad,
-              design.at("metrics").size() + 1);
+              compared);
   return bad ? 1 : 0;
 }
 

@@ -85,10 +85,12 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
   std::vector<long> strides(static_cast<size_t>(n), 0);
   auto job = [&](long i) {
     try {
-      if (i == n) {
+      // Job 0 is the stability analysis (the longest: start it first).
+      if (i == 0) {
         if (config_.stability) stab = reduced::analyze_stability(base);
         return;
       }
+      --i;
       const Scenario& sc = config_.scenarios.scenarios[static_cast<size_t>(i)];
       const scene::Scene s = apply_scenario(base, sc, config_.scenarios);
       reduced::RunOptions opts;

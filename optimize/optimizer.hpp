@@ -14,14 +14,15 @@ namespace pronk::optimize {
 
 /// How to optimize. Validated when a study is loaded.
 struct OptimizerOptions {
-  std::string library = "nlopt";          ///< "nlopt" or "ipopt"
-  std::string algorithm = "LN_BOBYQA";    ///< NLopt algorithm name (e.g. "LN_COBYLA", "GN_ISRES", "G_MLSL_LDS")
+  std::string library = "nlopt";  ///< "nlopt" or "ipopt"
+  std::string algorithm =
+      "LN_BOBYQA";  ///< NLopt algorithm name (e.g. "LN_COBYLA", "GN_ISRES", "G_MLSL_LDS")
   std::string local_algorithm = "LN_BOBYQA";  ///< local optimizer for multistart (MLSL) / AUGLAG
-  long max_evaluations = 200;             ///< objective evaluations (incl. finite-difference points)
-  double max_time = 0.0;                  ///< wall-clock limit [s]; 0 = none
-  double ftol_rel = 1e-6;                 ///< relative cost tolerance (0 = off)
-  double xtol_rel = 1e-6;                 ///< relative variable tolerance (0 = off)
-  unsigned long long seed = 1;            ///< seeds every random choice of the driver
+  long max_evaluations = 200;   ///< objective evaluations (incl. finite-difference points)
+  double max_time = 0.0;        ///< wall-clock limit [s]; 0 = none
+  double ftol_rel = 1e-6;       ///< relative cost tolerance (0 = off)
+  double xtol_rel = 1e-6;       ///< relative variable tolerance (0 = off)
+  unsigned long long seed = 1;  ///< seeds every random choice of the driver
   /// Weight of the quadratic penalty sum(max(g_j, 0)^2) added to the cost for
   /// algorithms without constraint support (reported as such in the result).
   double penalty_weight = 1e3;
@@ -46,25 +47,25 @@ struct OptimizerOptions {
 };
 
 enum class OptimizerStatus {
-  kConverged,      ///< a tolerance was met
+  kConverged,  ///< a tolerance was met
   kMaxEvaluations,
   kMaxTime,
-  kStopped,        ///< stop_flag or a user stop
-  kFailed,         ///< the library failed (message says why)
+  kStopped,  ///< stop_flag or a user stop
+  kFailed,   ///< the library failed (message says why)
 };
 std::string_view to_string(OptimizerStatus s);
 
 /// What happened (Ceres' Summary): the same for every driver.
 struct OptimizerResult {
   OptimizerStatus status = OptimizerStatus::kFailed;
-  std::string message;           ///< the library's own status text and any recorded cause
+  std::string message;  ///< the library's own status text and any recorded cause
   std::string library, algorithm;
   bool constraints_as_penalty = false;  ///< the algorithm had no constraint support
-  long evaluations = 0;          ///< total evaluations made
-  long failed_evaluations = 0;   ///< evaluations with ok == false
-  long gradient_evaluations = 0; ///< of which finite-difference points ("gradient")
+  long evaluations = 0;                 ///< total evaluations made
+  long failed_evaluations = 0;          ///< evaluations with ok == false
+  long gradient_evaluations = 0;        ///< of which finite-difference points ("gradient")
   long nonfinite_evaluations = 0;  ///< evaluations with a NaN/inf value (clamped, counted failed)
-  std::string library_status;    ///< the library's raw status ("XTOL_REACHED", "Solve_Succeeded")
+  std::string library_status;      ///< the library's raw status ("XTOL_REACHED", "Solve_Succeeded")
   /// Best feasible point (or least infeasible if none); only ever a point
   /// that evaluated ok; empty (best_index -1) when no evaluation succeeded.
   std::vector<double> best_x;

@@ -77,6 +77,38 @@ Scenario parse_scenario(io::JsonReader r, long index) {
   return s;
 }
 
+// A scenario set: default duration/strides, an explicit list and/or random samples.
+void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
+  set.duration = s.number_or("duration", 5.0, 1e-6, 1e6);
+  set.strides = s.integer_or("strides", 0, 0, 100000000);
+  if (s.has("list")) {
+    long i = 0;
+    for (io::JsonReader one : s.object_array("list"))
+      set.scenarios.push_back(parse_scenario(one, i++));
+  } else {
+    s.optional("list");
+  }
+  if (s.has("random")) {
+    io::JsonReader rr = s.object("random");
+    RandomScenarios spec;
+    spec.count = rr.integer_or("count", 0, 0, 1000000);
+    spec.seed = static_cast<std::uint64_t>(rr.integer_or("seed", 1, 0, 9007199254740991L));
+    range(rr, "tilt_deg", kDeg, &spec.tilt_lo, &spec.tilt_hi);
+    range(rr, "offset", 1.0, &spec.offset_lo, &spec.offset_hi);
+    range(rr, "lateral_offset", 1.0, &spec.lateral_lo, &spec.lateral_hi);
+    range(rr, "velocity_kick", 1.0, &spec.kick_lo, &spec.kick_hi);
+    range(rr, "yaw_deg", kDeg, &spec.yaw_lo, &spec.yaw_hi);
+    range(rr, "angular_velocity", 1.0, &spec.spin_lo, &spec.spin_hi);
+    rr.finish();
+    add_random_scenarios(spec, set);
+  } else {
+    s.optional("random");
+  }
+  s.finish();
+  if (set.scenarios.empty())
+    throw s.error("", "at least one scenario (\"list\" or \"random\")", "none");
+}
+
 }  // namespace
 
 Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
@@ -175,36 +207,14 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   // The bound document must still be a valid scene (e.g. a pointer that adds an unknown key).
   io::parse_scene(ec.scene_doc, scene_file);
 
-  // Scenarios.
-  io::JsonReader s = r.object("scenarios");
-  ec.scenarios.duration = s.number_or("duration", 5.0, 1e-6, 1e6);
-  ec.scenarios.strides = s.integer_or("strides", 0, 0, 100000000);
-  if (s.has("list")) {
-    long i = 0;
-    for (io::JsonReader one : s.object_array("list"))
-      ec.scenarios.scenarios.push_back(parse_scenario(one, i++));
+  // Scenarios, and the optional held-out validation set.
+  parse_scenario_set(r.object("scenarios"), ec.scenarios);
+  if (r.has("validation")) {
+    ScenarioSet v;
+    parse_scenario_set(r.object("validation"), v);
+    st.validation = v;
   } else {
-    s.optional("list");
-  }
-  if (s.has("random")) {
-    io::JsonReader rr = s.object("random");
-    RandomScenarios spec;
-    spec.count = rr.integer_or("count", 0, 0, 1000000);
-    spec.seed = static_cast<std::uint64_t>(rr.integer_or("seed", 1, 0, 9007199254740991L));
-    range(rr, "tilt_deg", kDeg, &spec.tilt_lo, &spec.tilt_hi);
-    range(rr, "offset", 1.0, &spec.offset_lo, &spec.offset_hi);
-    range(rr, "lateral_offset", 1.0, &spec.lateral_lo, &spec.lateral_hi);
-    range(rr, "velocity_kick", 1.0, &spec.kick_lo, &spec.kick_hi);
-    range(rr, "yaw_deg", kDeg, &spec.yaw_lo, &spec.yaw_hi);
-    range(rr, "angular_velocity", 1.0, &spec.spin_lo, &spec.spin_hi);
-    rr.finish();
-    add_random_scenarios(spec, ec.scenarios);
-  } else {
-    s.optional("random");
-  }
-  s.finish();
-  if (ec.scenarios.scenarios.empty()) {
-    throw s.error("", "at least one scenario (\"list\" or \"random\")", "none");
+    r.optional("validation");
   }
 
   // Objective and constraints.

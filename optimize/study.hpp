@@ -3,6 +3,7 @@
 // with the error discipline of SPEC 8.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct Study {
   std::string hash;           ///< FNV-1a 64 of the canonical study + scene documents (hex)
   EvaluatorConfig evaluator;  ///< scene document, parameters, scenarios, objective, constraints
   OptimizerOptions optimizer;
+  /// Held-out scenarios the initial and the tuned design are checked on after
+  /// the optimization (not seen by the optimizer).
+  std::optional<ScenarioSet> validation;
   std::string output_dir;  ///< default results/<name>
 };
 

@@ -271,6 +271,16 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
     md << "- " << ev.constraints[c].label() << ": initial g = " << o.initial.constraints[c]
        << ", tuned g = " << o.best.constraints[c] << "\n";
   }
+  if (o.validated) {
+    md << "\nValidation on " << st.validation->scenarios.size()
+       << " held-out scenarios (not seen by the optimizer):\n\n| metric | initial | tuned "
+          "|\n|---|---|---|\n";
+    for (const auto& [k, v] : o.validation_best.aggregated) {
+      const auto it = o.validation_initial.aggregated.find(k);
+      md << "| " << k << " | " << (it != o.validation_initial.aggregated.end() ? it->second : 0.0)
+         << " | " << v << " |\n";
+    }
+  }
   md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
      << "/design.json`), `history.csv`, `journal.jsonl`, `history.svg`, `compare.svg`, "
         "`initial/` and `tuned/` (first scenario, simulated).\n";
@@ -278,6 +288,13 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
 }
 
 }  // namespace
+
+Evaluator validation_evaluator(const Study& st, int threads) {
+  EvaluatorConfig cfg = st.evaluator;
+  cfg.scenarios = *st.validation;
+  cfg.threads = threads;
+  return Evaluator(cfg);
+}
 
 json design_document(const Study& st, const StudyOutcome& o, int threads) {
   json values = json::object();
@@ -292,6 +309,14 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
   const scene::Scene tuned =
       io::parse_scene(bind_parameters(st.evaluator.scene_doc, st.evaluator.parameters, o.best.unit),
                       st.evaluator.scene_file);
+  json validation = nullptr;
+  if (o.validated) {
+    validation = {{"scenarios", st.validation->scenarios.size()},
+                  {"initial_cost", o.validation_initial.cost},
+                  {"cost", o.validation_best.cost},
+                  {"initial_metrics", metrics_json(o.validation_initial)},
+                  {"metrics", metrics_json(o.validation_best)}};
+  }
   return {{"type", "pronk_design"},
           {"study", st.name},
           {"study_hash", st.hash},
@@ -316,6 +341,7 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
           {"metrics", metrics_json(o.best)},
           {"initial_metrics", metrics_json(o.initial)},
           {"initial_cost", o.initial.cost},
+          {"validation", validation},
           {"scene", io::scene_to_json(tuned)},
           {"study_document", study}};
 }
@@ -376,6 +402,12 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   o.initial = evaluator.evaluate_full(evaluator.initial_point());
   o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
                                                            : o.result.best_x);
+  if (st.validation) {
+    const Evaluator val = validation_evaluator(st, opt.threads);
+    o.validated = true;
+    o.validation_initial = val.evaluate_full(o.initial.unit);
+    o.validation_best = val.evaluate_full(o.best.unit);
+  }
   o.wall_time = now_s() - t0;
 
   write_history(o.out_dir, read_journal(journal_path), evaluator);

@@ -22,13 +22,19 @@ struct StudyOutcome {
   Evaluation initial;  ///< the starting design
   Evaluation best;     ///< the tuned design
   std::string out_dir;
-  long replayed = 0;       ///< evaluations taken from the journal on --resume
-  double wall_time = 0.0;  ///< [s]
+  bool validated = false;         ///< the study has a validation set
+  Evaluation validation_initial;  ///< the starting design on the validation set
+  Evaluation validation_best;     ///< the tuned design on the validation set
+  long replayed = 0;              ///< evaluations taken from the journal on --resume
+  double wall_time = 0.0;         ///< [s]
 };
 
 /// Runs the study. Throws io::InputError for a journal of another study or
 /// an existing journal without --resume; std::runtime_error for I/O failures.
 StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
+
+/// The evaluator of the study's validation set (same scene and parameters).
+Evaluator validation_evaluator(const Study& study, int threads);
 
 /// design.json of a finished study (self-contained: reproducible from it alone).
 nlohmann::json design_document(const Study& study, const StudyOutcome& outcome, int threads);

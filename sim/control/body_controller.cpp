@@ -10,9 +10,12 @@ namespace pronk::control {
 using Eigen::Vector3d;
 
 PdBodyController::PdBodyController(const scene::Controller& config, double gravity,
-                                   double leg_length, bool legged, bool small_angle)
+                                   double leg_length, bool legged, bool small_angle,
+                                   double stance_duration)
     : config_(config),
       takeoff_speed_(std::sqrt(2.0 * gravity * config.hop_height)),
+      gravity_(gravity),
+      stance_duration_(config.pulse_aware_hop ? stance_duration : 0.0),
       leg_length_(leg_length),
       bank_(legged && config.bank_enabled),
       small_angle_(small_angle) {}
@@ -29,8 +32,16 @@ BodyCommand PdBodyController::command(double t, const BodyState& s) const {
   c.P_world.y() = kp[1] * e.y() + kd[1] * ev.y();
   // Hop-height law (seed 2.4.1): Kd_z = m and setpoint sqrt(2 g h) make the next
   // apex exactly h above the touchdown height.
-  c.P_world.z() =
-      kp[2] * (leg_length_ - s.position.z()) + kd[2] * (takeoff_speed_ - s.velocity.z());
+  double v1 = takeoff_speed_;
+  if (stance_duration_ > 0.0) {
+    // Constant force over T: the CoM moves (v0 + v1) T / 2 during the stance, so
+    // the apex is l + (v0 + v1) T / 2 + v1^2 / (2 g); solve for v1 >= 0.
+    const double T = stance_duration_, g = gravity_, v0 = s.velocity.z();
+    const double half = 0.5 * g * T;
+    v1 = -half +
+         std::sqrt(std::max(half * half + 2.0 * g * config_.hop_height - g * v0 * T, half * half));
+  }
+  c.P_world.z() = kp[2] * (leg_length_ - s.position.z()) + kd[2] * (v1 - s.velocity.z());
 
   // Desired attitude: level at the setpoint heading; banking turns the lateral
   // error (in the heading frame) into a roll: legs push along body z, so a

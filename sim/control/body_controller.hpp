@@ -31,14 +31,17 @@ class BodyController {
 /// (exact), or theta_d - theta (small-angle formulation, seed A.1).
 class PdBodyController final : public BodyController {
  public:
+  /// stance_duration [s]: the pulse duration the pulse-aware hop law plans for (0: impulses).
   PdBodyController(const scene::Controller& config, double gravity, double leg_length, bool legged,
-                   bool small_angle);
+                   bool small_angle, double stance_duration = 0.0);
   BodyCommand command(double t, const BodyState& s) const override;
 
  private:
   const scene::Controller& config_;
-  double takeoff_speed_;  ///< sqrt(2 g h) [m/s]
-  double leg_length_;     ///< [m]
+  double takeoff_speed_;    ///< sqrt(2 g h) [m/s]
+  double gravity_;          ///< [m/s^2]
+  double stance_duration_;  ///< T of the pulse-aware hop law [s]; 0 = seed law
+  double leg_length_;       ///< [m]
   bool bank_;
   bool small_angle_;
 };

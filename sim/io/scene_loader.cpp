@@ -201,6 +201,7 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     JsonReader c = r.object("controller");
     auto& k = s.controller;
     k.hop_height = c.positive_or("hop_height", k.hop_height);
+    k.pulse_aware_hop = c.boolean_or("pulse_aware_hop", false);
     if (c.has("kp")) k.kp = c.vector("kp", 6, 0.0, 1e9);
     if (c.has("kd")) k.kd = c.vector("kd", 6, 0.0, 1e9);
     c.optional("kp");
@@ -352,6 +353,13 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
   } else {
     r.optional("simulation");
   }
+  if (s.controller.pulse_aware_hop && s.model == scene::ModelKind::kPulse &&
+      s.pulse.mode != scene::PulseMode::kDuration) {
+    throw InputError(
+        file, "/controller/pulse_aware_hop",
+        "false, or pulse mode \"duration\" (the law plans for a known stance duration)",
+        "true with pulse mode \"max_force\"");
+  }
   if (!(s.initial.position.z() > s.simulation.fall_min_height)) {
     throw InputError(
         file, "/initial/position/2",
@@ -403,6 +411,7 @@ json scene_to_json(const scene::Scene& s) {
   if (c.gait == scene::Gait::kAlternate) gait["groups"] = c.gait_groups;
   j["controller"] = {
       {"hop_height", c.hop_height},
+      {"pulse_aware_hop", c.pulse_aware_hop},
       {"kp", vec(c.kp)},
       {"kd", vec(c.kd)},
       {"setpoint",

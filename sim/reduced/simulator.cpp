@@ -123,7 +123,8 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   RigidBodyRhs rhs(model);
   const bool small_angle = !L.quaternion;
   control::PdBodyController body_controller(scene.controller, scene.gravity, scene.legs.length,
-                                            !scene.legs.body_only, small_angle);
+                                            !scene.legs.body_only, small_angle,
+                                            pulse ? scene.pulse.duration : 0.0);
   const auto leg_controller = control::make_leg_controller(scene);
   const control::StanceContext ctx{scene, body_controller, *leg_controller};
 

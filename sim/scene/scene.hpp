@@ -55,7 +55,13 @@ struct Controller {
   Vec6 kp = Vec6::Zero();
   /// Derivative gains for (x, y, z, roll, pitch, yaw) [kg, kg, kg, kg m^2 ...].
   Vec6 kd = Vec6::Zero();
-  double hop_height = 0.2;                ///< desired apex height above touchdown height h [m]
+  double hop_height = 0.2;  ///< desired apex height above touchdown height h [m]
+  /// Vertical law. false: the seed's hop-height law, desired takeoff speed
+  /// sqrt(2 g h) (exact for impulses). true (pulse model, duration mode): the
+  /// takeoff speed v1 that reaches the apex l + h after a stance of duration T
+  /// with constant force, given the touchdown speed v0:
+  /// (v0 + v1) T / 2 + v1^2 / (2 g) = h.
+  bool pulse_aware_hop = false;
   Vec3 setpoint_position = Vec3::Zero();  ///< x_d0 at t = 0 [m] (z unused)
   Vec3 setpoint_velocity = Vec3::Zero();  ///< v_d [m/s] (z unused)
   double setpoint_yaw = 0.0;              ///< desired heading [rad]

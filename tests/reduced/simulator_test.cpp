@@ -236,3 +236,34 @@ TEST_CASE("a run that falls ends with a status and a reason, never NaN", "[reduc
     CHECK(smp.euler123.allFinite());
   }
 }
+
+TEST_CASE("pulse-aware hop-height law: exact apex at any duty cycle", "[reduced][pulse]") {
+  // With a level body and a constant force over T, the takeoff speed v1 that
+  // satisfies (v0 + v1) T / 2 + v1^2 / (2 g) = h puts every apex at l + h, while
+  // the seed's law (v1 = sqrt(2 g h)) overshoots once the CoM moves in stance.
+  for (double T : {0.05, 0.2, 0.4}) {
+    auto s = test::load_shipped("legged_pulse_duty50", {"/pulse/duration=" + std::to_string(T)});
+    REQUIRE(s.controller.pulse_aware_hop);
+    s.simulation.duration = 6.0;
+    const auto r = reduced::simulate(s);
+    REQUIRE(r.status == reduced::RunStatus::kCompleted);
+    const double target = s.legs.length + s.controller.hop_height;
+    for (const auto& st : r.strides) {
+      if (st.has_apex) CHECK(std::abs(st.apex_height - target) < 1e-9);
+    }
+    // The seed's law from a first touchdown that is not on the orbit (dropped
+    // from below the apex) misses the target by the stance displacement.
+    auto seed_law = s;
+    seed_law.controller.pulse_aware_hop = false;
+    seed_law.initial.position.z() = 0.3;
+    seed_law.simulation.max_strides = 1;
+    const auto q = reduced::simulate(seed_law);
+    REQUIRE(!q.strides.empty());
+    REQUIRE(q.strides[0].has_apex);
+    const double v0 = std::sqrt(2 * s.gravity * 0.05),
+                 v1 = std::sqrt(2 * s.gravity * s.controller.hop_height);
+    const double expected_overshoot =
+        (v1 - v0) * T / 2;  // stance displacement (v0 + v1) T / 2, v0 < 0
+    CHECK(q.strides[0].apex_height - target == Approx(expected_overshoot).epsilon(1e-6));
+  }
+}
