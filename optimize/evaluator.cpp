@@ -162,6 +162,11 @@ ProblemEvaluation Evaluator::evaluate(const std::vector<double>& x) const {
 
 std::vector<Evaluation> Evaluator::evaluate_full_batch(
     const std::vector<std::vector<double>>& xs) const {
+  if (static_cast<int>(xs.size()) < pool_->threads()) {
+    std::vector<Evaluation> out;
+    for (const auto& x : xs) out.push_back(evaluate_full(x));
+    return out;
+  }
   std::vector<Evaluation> out(xs.size());
   pool_->parallel_for(static_cast<long>(xs.size()), [&](long i) {
     out[static_cast<size_t>(i)] = evaluate_impl(xs[static_cast<size_t>(i)], false);
@@ -171,6 +176,12 @@ std::vector<Evaluation> Evaluator::evaluate_full_batch(
 
 std::vector<ProblemEvaluation> Evaluator::evaluate_batch(
     const std::vector<std::vector<double>>& xs) const {
+  if (static_cast<int>(xs.size()) < pool_->threads()) {
+    // Fewer points than threads: parallel over each point's scenarios instead.
+    std::vector<ProblemEvaluation> out;
+    for (const auto& x : xs) out.push_back(to_problem(evaluate_full(x)));
+    return out;
+  }
   // Parallel over points, each point's scenarios serial: same numbers either way.
   std::vector<ProblemEvaluation> out(xs.size());
   pool_->parallel_for(static_cast<long>(xs.size()), [&](long i) {

@@ -1,10 +1,13 @@
 // A small fixed pool of worker threads with a deterministic parallel_for:
 // results are written by index, so the outcome does not depend on the thread
-// count or on scheduling.
+// count or on scheduling. Idle workers spin briefly before sleeping, so the
+// back-to-back short jobs of an optimization do not pay a wake-up each time.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -26,16 +29,22 @@ class ThreadPool {
   void parallel_for(long n, const std::function<void(long)>& fn);
 
  private:
+  struct Job {
+    const std::function<void(long)>* fn = nullptr;
+    long n = 0;
+    std::atomic<long> next{0};
+    std::atomic<long> done{0};
+  };
   void worker();
+  static void run_items(Job& job);
+
   std::vector<std::thread> workers_;
   std::mutex job_mutex_;  // one parallel_for at a time
-  std::mutex m_;
-  std::condition_variable cv_, done_cv_;
-  const std::function<void(long)>* fn_ = nullptr;
-  long n_ = 0, next_ = 0, finished_ = 0;
-  long generation_ = 0;
-  int active_ = 0;
-  bool stop_ = false;
+  std::mutex m_;          // guards job_ and the sleep/wake protocol
+  std::condition_variable cv_;
+  std::shared_ptr<Job> job_;
+  std::atomic<long> generation_{0};
+  std::atomic<bool> stop_{false};
 };
 
 }  // namespace pronk::optimize
