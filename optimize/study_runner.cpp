@@ -201,12 +201,12 @@ void write_history(const std::string& dir, const JournalContents& j, const Evalu
 }
 
 std::string figure_history() {
+  // Linear axis: costs may be negative (e.g. a "stabilized" term with weight -1).
   return "set terminal svg size 900,500 dynamic enhanced font 'Helvetica,11'\n"
          "set output 'history.svg'\nset datafile separator ','\nset grid\n"
          "set title 'Optimization history'\nset xlabel 'evaluation'\nset ylabel 'cost'\n"
-         "set logscale y\n"
-         "plot 'history.csv' every ::1 u 1:($3==1 && $4>0 ? $4 : 1/0) w p pt 7 ps 0.4 t 'cost', "
-         "'' every ::1 u 1:($6>0 ? $6 : 1/0) w l lw 2 t 'best feasible'\n";
+         "plot 'history.csv' every ::1 u 1:($3==1 ? $4 : 1/0) w p pt 7 ps 0.4 t 'cost', "
+         "'' every ::1 u 1:(strlen(strcol(6))>0 ? $6 : 1/0) w l lw 2 t 'best feasible'\n";
 }
 
 std::string figure_compare(const std::string& title) {

@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
-# Quick start, command 1: install what is missing, build, run the default job
-# (the seed's legged running scene, pulse model) and write its outputs to out/.
+# Quick start, command 1: install what is missing, build, run the default study
+# (study 2: tune the legged robot to run at ~50 % duty cycle, 300 evaluations
+# over 16 disturbed scenarios, validated on 64 held-out trials) into out/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" "$root/build"
 cd "$root"
-./build/pronk simulate studies/scenes/case3_legged_pulse.json --out out/case3_legged_pulse
+out=out/study2_legged_pulse_duty50
+rm -rf "$out"  # a fresh run (an existing journal would need --resume)
+./build/pronk optimize studies/study2_legged_pulse_duty50.json --out "$out"
+echo "summary:  $out/summary.md"
+echo "figures:  $out/history.svg $out/compare.svg $out/tuned/motion.svg"
+echo "design:   $out/design.json (check it: ./build/pronk reproduce $out/design.json)"

@@ -115,3 +115,22 @@ TEST_CASE("Ctrl-C keeps everything on disk and --resume finishes the same study"
   CHECK(slurp(d.path + "/cut/journal.jsonl") == reference);
   CHECK(pronk("reproduce " + d.path + "/cut/design.json", d.path) == 0);
 }
+
+TEST_CASE("the committed study results reproduce, and study 2 meets its mission",
+          "[cli][optimize][results]") {
+  Dir d;
+  const std::string results = std::string(PRONK_SOURCE_DIR) + "/results/";
+  for (const char* study : {"study1_body_only_gains", "study2_legged_pulse_duty50"}) {
+    INFO(study);
+    CHECK(pronk("reproduce " + results + study + "/design.json", d.path) == 0);
+  }
+  // Study 2: >= 95 % of the 64 held-out disturbed trials stabilized at ~50 % duty.
+  const json design = json::parse(slurp(results + "study2_legged_pulse_duty50/design.json"));
+  const json& v = design["validation"];
+  CHECK(v["scenarios"].get<int>() == 64);
+  CHECK(v["metrics"]["stabilized"].get<double>() >= 0.95);
+  CHECK(v["metrics"]["duty_mean"].get<double>() >= 0.45);
+  CHECK(v["metrics"]["duty_mean"].get<double>() <= 0.5);
+  // The starting design (seed-style gains) does not.
+  CHECK(v["initial_metrics"]["stabilized"].get<double>() < 0.5);
+}
