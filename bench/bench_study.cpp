@@ -34,6 +34,12 @@ int main(int argc, char** argv) {
       load_study(dir + "study2_legged_pulse_duty50.json", {"/optimizer/max_evaluations=300"});
   std::vector<double> t1, t2;
   long evals = 0;
+  {  // warm-up (page faults, caches, thread start-up)
+    EvaluatorConfig cfg = s2.evaluator;
+    cfg.threads = 2;
+    const Evaluator ev(cfg);
+    (void)run_optimizer(ev, s2.optimizer);
+  }
   double cost1 = 0, cost2 = 0;
   for (int r = 0; r < repeats; ++r) {
     for (int threads : {1, 2}) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <exception>
+#include <limits>
 
 #include "sim/io/input_error.hpp"
 #include "sim/io/scene_loader.hpp"
@@ -15,8 +16,60 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
+namespace {
+
+// The scene number a pointer names, with the closed range parse_scene accepts
+// for it; nullptr for pointers without a fast path (degrees, nested objects...).
+double* fast_field(scene::Scene& s, const std::string& ptr, double* lo, double* hi) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double tiny = std::numeric_limits<double>::min();
+  for (int i = 0; i < 6; ++i) {
+    if (ptr == "/controller/kp/" + std::to_string(i)) {
+      *lo = 0.0, *hi = 1e9;
+      return &s.controller.kp[i];
+    }
+    if (ptr == "/controller/kd/" + std::to_string(i)) {
+      *lo = 0.0, *hi = 1e9;
+      return &s.controller.kd[i];
+    }
+  }
+  if (ptr == "/controller/hop_height") {
+    *lo = tiny, *hi = inf;
+    return &s.controller.hop_height;
+  }
+  if (ptr == "/controller/bank/kp" || ptr == "/controller/bank/kd") {
+    *lo = 0.0, *hi = 1e6;
+    return ptr.back() == 'p' ? &s.controller.bank_kp : &s.controller.bank_kd;
+  }
+  if (ptr == "/pulse/duration") {
+    *lo = tiny, *hi = inf;
+    return &s.pulse.duration;
+  }
+  if (ptr == "/pulse/max_force") {
+    *lo = tiny, *hi = inf;
+    return &s.pulse.max_force;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 Evaluator::Evaluator(EvaluatorConfig config)
-    : config_(std::move(config)), pool_(std::make_unique<ThreadPool>(config_.threads)) {}
+    : config_(std::move(config)), pool_(std::make_unique<ThreadPool>(config_.threads)) {
+  try {
+    base_scene_ = io::parse_scene(config_.scene_doc, config_.scene_file);
+  } catch (const io::InputError&) {
+    return;  // every evaluation takes the JSON path and reports the error
+  }
+  scene::Scene probe = base_scene_;
+  fast_binding_ = true;
+  for (const auto& p : config_.parameters) {
+    double lo = 0, hi = 0;
+    if (fast_field(probe, p.pointer, &lo, &hi) == nullptr || p.lower < lo || p.upper > hi) {
+      fast_binding_ = false;
+    }
+  }
+}
 
 std::vector<double> Evaluator::lower_bounds() const {
   return std::vector<double>(dimension(), 0.0);
@@ -44,6 +97,15 @@ std::vector<std::string> Evaluator::constraint_names() const {
 }
 
 scene::Scene Evaluator::scene_at(const std::vector<double>& unit) const {
+  if (fast_binding_) {
+    scene::Scene s = base_scene_;
+    double lo = 0, hi = 0;
+    for (size_t i = 0; i < config_.parameters.size(); ++i) {
+      *fast_field(s, config_.parameters[i].pointer, &lo, &hi) =
+          config_.parameters[i].from_unit(unit[i]);
+    }
+    return s;
+  }
   return io::parse_scene(bind_parameters(config_.scene_doc, config_.parameters, unit),
                          config_.scene_file);
 }

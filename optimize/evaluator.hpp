@@ -92,6 +92,11 @@ class Evaluator final : public Problem {
   Evaluation evaluate_impl(const std::vector<double>& unit, bool parallel) const;
   EvaluatorConfig config_;
   std::unique_ptr<ThreadPool> pool_;
+  /// Fast binding: when every parameter names a plain number field of the
+  /// scene whose validity rule its bounds already satisfy, parameters are
+  /// written straight into a copy of the parsed scene (no JSON round trip).
+  bool fast_binding_ = false;
+  scene::Scene base_scene_;
 };
 
 }  // namespace pronk::optimize

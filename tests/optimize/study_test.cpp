@@ -12,6 +12,7 @@
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
 #include "sim/io/input_error.hpp"
+#include "sim/io/scene_loader.hpp"
 
 using namespace pronk;
 using namespace pronk::optimize;
@@ -207,4 +208,15 @@ TEST_CASE("a study's journal is the same with 1 and 2 threads, and --resume repl
       std::string(PRONK_EXE) + " reproduce " + d1 + "/tampered.json > /dev/null 2>&1";
   CHECK(WEXITSTATUS(std::system(cmd2.c_str())) == 1);
   for (const auto& d : {d1, d2, d3}) std::filesystem::remove_all(d);
+}
+
+TEST_CASE("fast parameter binding builds the same scene as the JSON route", "[optimize]") {
+  const Study st = parse(small_study());
+  const Evaluator ev(st.evaluator);
+  for (const std::vector<double>& x : {std::vector<double>{0.0, 0.5, 1.0}, {0.123, 0.77, 0.31}}) {
+    const scene::Scene fast = ev.scene_at(x);
+    const scene::Scene slow = io::parse_scene(
+        bind_parameters(st.evaluator.scene_doc, st.evaluator.parameters, x), "scene");
+    CHECK(io::scene_to_json(fast).dump() == io::scene_to_json(slow).dump());
+  }
 }
