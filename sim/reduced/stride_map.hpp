@@ -21,9 +21,9 @@ using StrideState = Eigen::Matrix<double, kStrideStateSize, 1>;
 
 struct StrideMapResult {
   bool ok = false;
-  std::string reason;       ///< why not ok (fell, diverged, no touchdown)
+  std::string reason;  ///< why not ok (fell, diverged, no touchdown)
   StrideState next = StrideState::Zero();
-  double period = 0.0;      ///< time to the touchdown that ends the map [s]
+  double period = 0.0;  ///< time to the touchdown that ends the map [s]
 };
 
 /// Applies the map: from touchdown state s, the controller acts at once and the
@@ -36,13 +36,13 @@ int gait_period(const scene::Scene& scene);
 struct StabilityOptions {
   int max_settle_iterations = 200;  ///< map iterations towards the orbit before Newton
   int max_newton_iterations = 10;
-  double orbit_tolerance = 1e-10;   ///< |F(s) - s|_inf at the fixed point
-  double fd_step = 1e-6;            ///< central-difference step in every coordinate
-  double rtol = 1e-11;              ///< solver tolerance for the map (smooth enough to difference)
+  double orbit_tolerance = 1e-10;  ///< |F(s) - s|_inf at the fixed point
+  double fd_step = 1e-6;           ///< central-difference step in every coordinate
+  double rtol = 1e-11;             ///< solver tolerance for the map (smooth enough to difference)
 };
 
 struct StabilityResult {
-  bool ok = false;            ///< orbit found and linearised
+  bool ok = false;  ///< orbit found and linearised
   std::string reason;
   StrideState fixed_point = StrideState::Zero();
   double orbit_residual = 0.0;  ///< |F(s*) - s*|_inf

@@ -29,7 +29,8 @@ class LambdaProblem : public Problem {
   std::vector<double> initial_point() const override { return x0_; }
   std::vector<std::string> variable_names() const override {
     std::vector<std::string> v;
-    for (int j = 0; j < dimension(); ++j) v.push_back(std::string(1, 'p').append(std::to_string(j)));
+    for (int j = 0; j < dimension(); ++j)
+      v.push_back(std::string(1, 'p').append(std::to_string(j)));
     return v;
   }
   std::vector<std::string> constraint_names() const override {
