@@ -77,7 +77,7 @@ TEST_CASE("stride map multipliers of the body-only model match the hand derivati
   }
 }
 
-TEST_CASE("an unstable gait has spectral radius above one; a falling one gets the penalty",
+TEST_CASE("an unstable gait has spectral radius above one, a falling one gets the penalty",
           "[stability]") {
   auto scene = test::load_shipped("case1_body_only");
   const double m = scene.body.mass;
