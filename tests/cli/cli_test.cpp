@@ -323,7 +323,7 @@ TEST_CASE("bad --set overrides exit 2 naming the pointer", "[cli][errors]") {
   }
 }
 
-TEST_CASE("a good run writes every output; its resolved scene reruns identically",
+TEST_CASE("a good run writes every output, its resolved scene reruns identically",
           "[cli][outputs]") {
   TempDir dir;
   const std::string scene = kSceneDir + "case1_body_only.json";

@@ -68,7 +68,7 @@ TEST_CASE("invalid inertia tensors are rejected with a clear reason", "[pseudori
   CHECK(err.find("flat") != std::string::npos);
 }
 
-TEST_CASE("Kabsch attitude recovers rotations; it stays a proper rotation when deformed",
+TEST_CASE("Kabsch attitude recovers rotations and stays a proper rotation when deformed",
           "[pseudorigid]") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -211,7 +211,7 @@ TEST_CASE("case 9: spring-legged hopper on a conservative ground keeps its energ
   CHECK(r.energy_drift / r.energy_scale < 1e-6);
 }
 
-TEST_CASE("case 8: RK4 beyond its stability limit is reported as diverged; RODAS4 completes",
+TEST_CASE("case 8: RK4 beyond its stability limit is reported as diverged, RODAS4 completes",
           "[pseudorigid][validation]") {
   // Four 1 kg masses, six 1e6 N/m springs: internal frequency ~2e3 rad/s, RK4
   // stability needs h < ~1.4e-3 s.
