@@ -170,6 +170,8 @@ class Loader {
     j["euler_set"] = o.euler_313 ? "313" : "123";
     j["energy_blowup_factor"] = o.energy_blowup_factor;
     j["check_jacobian"] = o.check_jacobian;
+    j["ghost_transfer"] =
+        o.ghost_transfer == pr::GhostTransfer::kMinNorm ? "min_norm" : "barycentric";
     j["zero_length_epsilon"] = o.zero_length_epsilon;
     j["internal_stiffness"] = s.internal_stiffness;
     j["contact_stiffness"] = s.contact_stiffness;
@@ -218,6 +220,10 @@ class Loader {
     o->euler_313 = s.choice_or("euler_set", "123", {"123", "313"}) == "313";
     o->energy_blowup_factor = s.positive_or("energy_blowup_factor", o->energy_blowup_factor);
     o->check_jacobian = s.boolean_or("check_jacobian", false);
+    o->ghost_transfer =
+        s.choice_or("ghost_transfer", "barycentric", {"barycentric", "min_norm"}) == "min_norm"
+            ? pr::GhostTransfer::kMinNorm
+            : pr::GhostTransfer::kBarycentric;
     o->zero_length_epsilon = s.positive_or("zero_length_epsilon", o->zero_length_epsilon);
     set->internal_auto = stiffness_or_auto(s, node, "internal_stiffness", &set->internal_stiffness);
     set->contact_auto = stiffness_or_auto(s, node, "contact_stiffness", &set->contact_stiffness);

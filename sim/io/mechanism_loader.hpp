@@ -28,6 +28,7 @@
 //                "rtol", "atol", "h_fixed", "h_initial", "h_max", "h_min" [s], "max_steps",
 //                "dense_lu_max_dimension", "error_norm": "state"|"body", "euler_set": "123"|"313",
 //                "energy_blowup_factor", "check_jacobian", "zero_length_epsilon" [m],
+//                "ghost_transfer": "barycentric" (default, conservative) or "min_norm",
 //                "internal_stiffness": N/m or "auto", "contact_stiffness": N/m or "auto",
 //                "strain_budget", "penetration_budget" [m], "load_factor"}
 #pragma once

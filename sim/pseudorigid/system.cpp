@@ -102,8 +102,11 @@ int MechanismSystem::transfers(const NodeRef& n, std::array<Transfer, 4>& out) c
     case NodeRef::Kind::kGhost: {
       const GhostPoint& g = m_.ghost_points[n.index];
       const Matrix3d& r = frames_[g.body].rotation;
+      const bool bary = m_.simulation.ghost_transfer == GhostTransfer::kBarycentric;
       for (int i = 0; i < 4; ++i) {
-        out[i] = {m_.bodies[g.body].first_mass + i, r * g.transfer[i] * r.transpose()};
+        out[i] = {m_.bodies[g.body].first_mass + i,
+                  bary ? Matrix3d(g.weights[i] * Matrix3d::Identity())
+                       : Matrix3d(r * g.transfer[i] * r.transpose())};
       }
       return 4;
     }
@@ -161,6 +164,95 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
   return e;
 }
 
+void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
+                                              std::vector<std::pair<int, Vector3d>>& out) const {
+  const Body& body = m_.bodies[s.body];
+  const GhostPoint& gp = m_.ghost_points[s.ghost];
+  std::array<Vector3d, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
+  const BodyFrame frame = fit_attitude(x, body.local);
+  const Matrix3d& rot = frame.rotation;
+  const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
+  const Vector3d dir = rot * s.direction;
+  const Vector3d r = node_position(n, y) - node_position(g, y);
+  const Vector3d v = node_velocity(n, y) - node_velocity(g, y);
+  Matrix3d proj = Matrix3d::Identity();
+  Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the direction [N m]
+  switch (s.type) {
+    case SurfaceType::kPlane:
+      if (dir.dot(r) >= 0.0) return;
+      proj = dir * dir.transpose();
+      tau = -s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kLine:
+      proj = Matrix3d::Identity() - dir * dir.transpose();
+      tau = s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kPoint:
+      proj = Matrix3d::Identity();
+      break;
+  }
+  const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
+  if (n.kind == NodeRef::Kind::kMass) {
+    out.emplace_back(n.index, force);
+  } else if (n.kind == NodeRef::Kind::kGhost) {
+    const GhostPoint& gn = m_.ghost_points[n.index];
+    const int fn = m_.bodies[gn.body].first_mass;
+    for (int i = 0; i < 4; ++i) out.emplace_back(fn + i, gn.weights[i] * force);
+  }
+  const std::array<Matrix3d, 4> omega = s.type == SurfaceType::kPoint
+                                            ? std::array<Matrix3d, 4>{}
+                                            : attitude_derivative(frame, body.local);
+  const Vector3d tau_body = rot.transpose() * tau;
+  for (int i = 0; i < 4; ++i) {
+    Vector3d f = -gp.weights[i] * force;
+    if (s.type != SurfaceType::kPoint) f += omega[i].transpose() * tau_body;
+    out.emplace_back(body.first_mass + i, f);
+  }
+}
+
+void MechanismSystem::attached_surface_jacobian(const Surface& s, const NodeRef& n,
+                                                const ode::Vec& y) const {
+  std::vector<int> masses;
+  const int fb = m_.bodies[s.body].first_mass;
+  for (int i = 0; i < 4; ++i) masses.push_back(fb + i);
+  if (n.kind == NodeRef::Kind::kMass) {
+    masses.push_back(n.index);
+  } else if (n.kind == NodeRef::Kind::kGhost) {
+    const int fn = m_.bodies[m_.ghost_points[n.index].body].first_mass;
+    for (int i = 0; i < 4; ++i) masses.push_back(fn + i);
+  }
+  std::sort(masses.begin(), masses.end());
+  masses.erase(std::unique(masses.begin(), masses.end()), masses.end());
+  ode::Vec yp = y;
+  std::vector<std::pair<int, Vector3d>> fp, fm;
+  std::vector<Vector3d> diff(m_.masses.size());
+  // Momenta enter only through the damper: without one, position columns suffice.
+  const int columns = s.damping > 0.0 ? 6 : 3;
+  for (int mass : masses) {
+    for (int c = 0; c < columns; ++c) {
+      const int col = 6 * mass + c;
+      const double h = 1e-6 * (1.0 + std::abs(y[col]));
+      fp.clear();
+      fm.clear();
+      yp[col] = y[col] + h;
+      attached_surface_forces(s, n, yp, fp);
+      yp[col] = y[col] - h;
+      attached_surface_forces(s, n, yp, fm);
+      yp[col] = y[col];
+      for (int t : masses) diff[t].setZero();
+      for (const auto& [t, f] : fp) diff[t] += f;
+      for (const auto& [t, f] : fm) diff[t] -= f;
+      for (int t : masses) {
+        const Vector3d d = diff[t] / (2.0 * h);
+        for (int k = 0; k < 3; ++k) {
+          if (d[k] != 0.0) triplets_.emplace_back(6 * t + 3 + k, col, d[k]);
+        }
+      }
+    }
+  }
+}
+
 void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
   update_frames(y, false);
   const int nm = static_cast<int>(m_.masses.size());
@@ -179,8 +271,13 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval e = eval_surface(s, n, y);
       if (!e.active) continue;
-      apply(n, e.force);
-      if (s.body >= 0) apply(NodeRef{NodeRef::Kind::kGhost, s.ghost}, -e.force);
+      if (s.body < 0) {
+        apply(n, e.force);
+        continue;
+      }
+      attached_.clear();
+      attached_surface_forces(s, n, y, attached_);
+      for (const auto& [mass, f] : attached_) force_.segment<3>(3 * mass) += f;
     }
   }
   for (const WorldForce& f : m_.world_forces) apply(f.node, f.force);
@@ -254,6 +351,7 @@ void MechanismSystem::jac_rotation(const NodeRef& target, int body, const Matrix
 /// Rotation dependence of the ghost-point transfer itself: F_i = R G_i R^T F.
 void MechanismSystem::jac_transfer(const NodeRef& target, const Vector3d& force) const {
   if (target.kind != NodeRef::Kind::kGhost) return;
+  if (m_.simulation.ghost_transfer == GhostTransfer::kBarycentric) return;  // constant weights
   const GhostPoint& g = m_.ghost_points[target.index];
   const Matrix3d& r = frames_[g.body].rotation;
   const Vector3d fb = r.transpose() * force;
@@ -287,22 +385,11 @@ void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval e = eval_surface(s, n, y);
       if (!e.active) continue;
-      const Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
-      jac_force(n, n, kx, kv);
-      if (s.body < 0) continue;
-      const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
-      jac_force(n, g, -kx, -kv);
-      jac_force(g, n, -kx, -kv);
-      jac_force(g, g, kx, kv);
-      jac_transfer(g, -e.force);
-      if (s.type != SurfaceType::kPoint) {
-        const Vector3d q = s.stiffness * e.r + s.damping * e.v;
-        const double sign = s.type == SurfaceType::kPlane ? 1.0 : -1.0;
-        const Matrix3d dm = sign * (e.dir.dot(q) * Matrix3d::Identity() + e.dir * q.transpose()) *
-                            frames_[s.body].rotation * skew(s.direction);
-        jac_rotation(n, s.body, dm);
-        jac_rotation(g, s.body, -dm);
+      if (s.body >= 0) {
+        attached_surface_jacobian(s, n, y);
+        continue;
       }
+      jac_force(n, n, -s.stiffness * e.proj, -s.damping * e.proj);
     }
   }
   for (const WorldForce& f : m_.world_forces) jac_transfer(f.node, f.force);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -86,6 +87,17 @@ class MechanismSystem final : public ode::OdeSystem {
     double penetration = 0.0;
   };
   SurfaceEval eval_surface(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  /// Forces of a body-attached surface on node n as the exact gradient of its
+  /// potential U = 1/2 k |P(R) (x_n - p)|^2 (p = sum w_i x_i the surface's ghost
+  /// point, P turning with the Kabsch rotation R): F on n, -F on the body masses
+  /// by the barycentric weights w_i, and the direction's rotation torque
+  /// tau = -dU/dtheta distributed by the Kabsch derivative, f_k = Omega_k^T R^T tau;
+  /// damping -b P (v_n - v_p) goes the same way (its power is exactly the
+  /// dissipated power). Computed from y alone. Adds (mass, force [N]) pairs to out.
+  void attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
+                               std::vector<std::pair<int, Eigen::Vector3d>>& out) const;
+  /// Jacobian blocks of attached_surface_forces by central differences.
+  void attached_surface_jacobian(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
 
   const Mechanism& m_;
   double segment_time_ = 0.0;
@@ -94,6 +106,7 @@ class MechanismSystem final : public ode::OdeSystem {
   mutable ode::Vec force_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
   mutable long zero_length_ = 0;
+  mutable std::vector<std::pair<int, Eigen::Vector3d>> attached_;
   std::vector<double> inv_mass_;
 };
 

@@ -133,7 +133,7 @@ json check_outputs(const TempDir& dir, const std::string& out) {
 
 TEST_CASE("pronk simulate runs every shipped mechanism scene", "[cli][mechanism]") {
   TempDir dir;
-  for (const char* name : {"satellite", "pendulum", "spring_leg_drop"}) {
+  for (const char* name : {"satellite", "pendulum", "spring_leg_drop", "four_leg_drop"}) {
     INFO(name);
     const Run r = pronk(dir, {"simulate", kMechDir + name + ".json", "--set",
                               "/simulation/t_end=0.3", "--out", name, "--quiet"});
