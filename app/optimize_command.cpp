@@ -32,16 +32,6 @@ int thread_count(int requested) {
   return hw > 0 ? static_cast<int>(hw) : 1;
 }
 
-std::string compiler_id() {
-#if defined(__clang__)
-  return "clang " __clang_version__;
-#elif defined(__GNUC__)
-  return "gcc " __VERSION__;
-#else
-  return "unknown";
-#endif
-}
-
 }  // namespace
 
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
@@ -135,7 +125,7 @@ int run_reproduce(const ReproduceArgs& args) {
   }
   const optimize::Evaluation e = ev.evaluate_full(unit);
   const bool same_build = design.value("commit", "") == std::string(PRONK_GIT_COMMIT) &&
-                          design.value("compiler", "") == compiler_id();
+                          design.value("compiler", "") == optimize::compiler_id();
   std::printf(
       "reproducing %s (%s build: %s)\n", args.design_path.c_str(),
       same_build ? "same" : "different",

@@ -161,16 +161,6 @@ std::string csv_num(double x) {
   return buf;
 }
 
-std::string compiler_id() {
-#if defined(__clang__)
-  return "clang " __clang_version__;
-#elif defined(__GNUC__)
-  return "gcc " __VERSION__;
-#else
-  return "unknown";
-#endif
-}
-
 json metrics_json(const Evaluation& e) {
   json m = json::object();
   for (const auto& [k, v] : e.aggregated) m[k] = v;
@@ -288,6 +278,16 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
 }
 
 }  // namespace
+
+std::string compiler_id() {
+#if defined(__clang__)
+  return "clang " __clang_version__;
+#elif defined(__GNUC__)
+  return "gcc " __VERSION__;
+#else
+  return "unknown";
+#endif
+}
 
 Evaluator validation_evaluator(const Study& st, int threads) {
   EvaluatorConfig cfg = st.evaluator;

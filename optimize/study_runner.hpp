@@ -33,6 +33,9 @@ struct StudyOutcome {
 /// an existing journal without --resume; std::runtime_error for I/O failures.
 StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
 
+/// The compiler that built this binary ("gcc 12.2.0", ...), recorded in designs.
+std::string compiler_id();
+
 /// The evaluator of the study's validation set (same scene and parameters).
 Evaluator validation_evaluator(const Study& study, int threads);
 
