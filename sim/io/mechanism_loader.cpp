@@ -199,7 +199,13 @@ class Loader {
 
   void read_simulation(JsonReader& s, const json& node, pr::SimulationOptions* o, Settings* set) {
     o->t_end = s.positive_or("t_end", o->t_end);
+    if (o->t_end > 1e6) throw s.error("t_end", "a duration <= 1e6 s", std::to_string(o->t_end));
     o->output_interval = s.positive_or("output_interval", o->output_interval);
+    if (o->t_end / o->output_interval > 1e7) {
+      throw s.error(
+          "output_interval", "at most 1e7 output samples (t_end / output_interval)",
+          std::to_string(o->output_interval) + " s for t_end " + std::to_string(o->t_end) + " s");
+    }
     const std::string method =
         s.choice_or("method", "rodas4", {"euler", "rk2", "rk4", "dopri5", "rodas4"});
     if (!ode::parse_method(method, &o->solver.method)) {
