@@ -179,6 +179,26 @@ void EvaluationTracker::consider_best(long index, const std::vector<double>& x,
   best_ = e;
 }
 
+void append_message(std::string* message, const std::string& part) {
+  if (part.empty()) return;
+  if (!message->empty()) *message += "; ";
+  *message += part;
+}
+
+void EvaluationTracker::fail(OptimizerResult* r, const std::string& cause) {
+  record_error(cause);
+  r->status = OptimizerStatus::kFailed;
+  append_message(&r->message, stop_message());
+}
+
+void EvaluationTracker::finish(OptimizerResult* r) const {
+  fill(r);
+  if (r->best_index < 0) {
+    if (r->status == OptimizerStatus::kConverged) r->status = OptimizerStatus::kFailed;
+    append_message(&r->message, "no evaluation succeeded");
+  }
+}
+
 void EvaluationTracker::fill(OptimizerResult* r) const {
   r->evaluations = evaluations_;
   r->failed_evaluations = failed_;

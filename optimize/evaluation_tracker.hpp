@@ -32,6 +32,9 @@ enum class StopCause {
   kError,           ///< the Problem or the observer threw, or broke its contract
 };
 
+/// Appends `part` to a "; "-separated message (nothing for an empty part).
+void append_message(std::string* message, const std::string& part);
+
 class EvaluationTracker {
  public:
   EvaluationTracker(const Problem& problem, const OptimizerOptions& options,
@@ -68,6 +71,11 @@ class EvaluationTracker {
   double elapsed() const;
   /// Fills counters, best point and timings of the result.
   void fill(OptimizerResult* result) const;
+  /// A driver ended by an exception: records the cause, status kFailed.
+  void fail(OptimizerResult* result, const std::string& cause);
+  /// Fills the result (see fill); without any successful evaluation the run
+  /// cannot be reported converged.
+  void finish(OptimizerResult* result) const;
 
  private:
   void consider_best(long index, const std::vector<double>& x, const ProblemEvaluation& e);

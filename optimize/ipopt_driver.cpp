@@ -218,9 +218,7 @@ OptimizerStatus map_status(Ipopt::ApplicationReturnStatus s) {
 }
 
 void append(std::string* message, const std::string& part) {
-  if (part.empty()) return;
-  if (!message->empty()) *message += "; ";
-  *message += part;
+  detail::append_message(message, part);
 }
 
 /// Sets one pass-through option with the type Ipopt registered for it.
@@ -347,19 +345,11 @@ OptimizerResult run_ipopt(const Problem& problem, const OptimizerOptions& option
              "reported");
     }
   } catch (const std::exception& e) {
-    tracker.record_error(std::string("Ipopt driver: ") + e.what());
-    result.status = OptimizerStatus::kFailed;
-    append(&result.message, tracker.stop_message());
+    tracker.fail(&result, std::string("Ipopt driver: ") + e.what());
   } catch (...) {
-    tracker.record_error("Ipopt driver: non-standard exception");
-    result.status = OptimizerStatus::kFailed;
-    append(&result.message, tracker.stop_message());
+    tracker.fail(&result, "Ipopt driver: non-standard exception");
   }
-  tracker.fill(&result);
-  if (result.best_index < 0) {
-    if (result.status == OptimizerStatus::kConverged) result.status = OptimizerStatus::kFailed;
-    append(&result.message, "no evaluation succeeded");
-  }
+  tracker.finish(&result);
   return result;
 }
 

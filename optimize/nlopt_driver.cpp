@@ -155,9 +155,7 @@ OptimizerStatus map_result(nlopt_result r) {
 }
 
 void append(std::string* message, const std::string& part) {
-  if (part.empty()) return;
-  if (!message->empty()) *message += "; ";
-  *message += part;
+  detail::append_message(message, part);
 }
 
 /// Applies the stopping criteria shared by the main and the local optimizer.
@@ -345,19 +343,11 @@ OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& option
                                   std::to_string(weight) + ")");
     }
   } catch (const std::exception& e) {
-    tracker.record_error(std::string("NLopt driver: ") + e.what());
-    result.status = OptimizerStatus::kFailed;
-    append(&result.message, tracker.stop_message());
+    tracker.fail(&result, std::string("NLopt driver: ") + e.what());
   } catch (...) {
-    tracker.record_error("NLopt driver: non-standard exception");
-    result.status = OptimizerStatus::kFailed;
-    append(&result.message, tracker.stop_message());
+    tracker.fail(&result, "NLopt driver: non-standard exception");
   }
-  tracker.fill(&result);
-  if (result.best_index < 0) {
-    if (result.status == OptimizerStatus::kConverged) result.status = OptimizerStatus::kFailed;
-    append(&result.message, "no evaluation succeeded");
-  }
+  tracker.finish(&result);
   return result;
 }
 

@@ -22,7 +22,8 @@ TEST_CASE("aggregates: mean, worst and CVaR by hand", "[optimize]") {
   CHECK(aggregate({}, Aggregate::kMean, 0) == 0.0);
 }
 
-TEST_CASE("parameters map to the unit interval linearly or logarithmically and back", "[optimize]") {
+TEST_CASE("parameters map to the unit interval linearly or logarithmically and back",
+          "[optimize]") {
   Parameter lin{"a", "/x", -2.0, 6.0, false, 0.0};
   CHECK(lin.to_unit(2.0) == Approx(0.5));
   CHECK(lin.from_unit(0.25) == Approx(0.0));
