@@ -689,3 +689,22 @@ TEST_CASE("apply_override rejects bad assignments", "[io][override][errors]") {
     check_error(parse_error(d), "/body/mass", "a finite number > 0", "number -1");
   }
 }
+
+TEST_CASE("pulse_aware_hop needs a known stance duration", "[io][scene]") {
+  nlohmann::json doc = pronk::io::read_json_file(std::string(PRONK_SOURCE_DIR) +
+                                                 "/studies/scenes/legged_pulse_duty50.json");
+  REQUIRE(pronk::io::parse_scene(doc, "duty50.json").controller.pulse_aware_hop);
+  doc["pulse"]["mode"] = "max_force";
+  try {
+    pronk::io::parse_scene(doc, "duty50.json");
+    FAIL("max_force with the pulse-aware hop law was accepted");
+  } catch (const pronk::io::InputError& e) {
+    CHECK(e.pointer() == "/controller/pulse_aware_hop");
+    CHECK(e.file() == "duty50.json");
+  }
+  // The impulse model ignores the law: accepted.
+  doc["model"] = "impulse";
+  CHECK(pronk::io::parse_scene(doc, "duty50.json").controller.pulse_aware_hop);
+  doc["controller"]["pulse_aware_hop"] = "yes";
+  CHECK_THROWS_AS(pronk::io::parse_scene(doc, "duty50.json"), pronk::io::InputError);
+}
