@@ -185,6 +185,26 @@ void append_message(std::string* message, const std::string& part) {
   *message += part;
 }
 
+void EvaluationTracker::apply_stop_cause(OptimizerResult* r) const {
+  switch (stop_cause()) {
+    case StopCause::kNone:
+      break;
+    case StopCause::kMaxEvaluations:
+      r->status = OptimizerStatus::kMaxEvaluations;
+      break;
+    case StopCause::kMaxTime:
+      r->status = OptimizerStatus::kMaxTime;
+      break;
+    case StopCause::kStopFlag:
+      r->status = OptimizerStatus::kStopped;
+      break;
+    case StopCause::kError:
+      r->status = OptimizerStatus::kFailed;
+      break;
+  }
+  append_message(&r->message, stop_message());
+}
+
 void EvaluationTracker::fail(OptimizerResult* r, const std::string& cause) {
   record_error(cause);
   r->status = OptimizerStatus::kFailed;

@@ -71,6 +71,9 @@ class EvaluationTracker {
   double elapsed() const;
   /// Fills counters, best point and timings of the result.
   void fill(OptimizerResult* result) const;
+  /// When the tracker stopped the run (budget, time, stop flag, error), that
+  /// reason overrides the library's status; the cause is added to the message.
+  void apply_stop_cause(OptimizerResult* result) const;
   /// A driver ended by an exception: records the cause, status kFailed.
   void fail(OptimizerResult* result, const std::string& cause);
   /// Fills the result (see fill); without any successful evaluation the run

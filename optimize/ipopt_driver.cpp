@@ -321,23 +321,7 @@ OptimizerResult run_ipopt(const Problem& problem, const OptimizerOptions& option
     result.library_status = status_text(st);
     result.status = map_status(st);
     result.message = "Ipopt: " + result.library_status;
-    switch (tracker.stop_cause()) {
-      case StopCause::kNone:
-        break;
-      case StopCause::kMaxEvaluations:
-        result.status = OptimizerStatus::kMaxEvaluations;
-        break;
-      case StopCause::kMaxTime:
-        result.status = OptimizerStatus::kMaxTime;
-        break;
-      case StopCause::kStopFlag:
-        result.status = OptimizerStatus::kStopped;
-        break;
-      case StopCause::kError:
-        result.status = OptimizerStatus::kFailed;
-        break;
-    }
-    append(&result.message, tracker.stop_message());
+    tracker.apply_stop_cause(&result);
     if (result.status == OptimizerStatus::kConverged && tracker.failed_point(tnlp->final_x())) {
       result.status = OptimizerStatus::kFailed;
       append(&result.message,

@@ -292,23 +292,7 @@ OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& option
     }
     result.status = map_result(r);
     result.message = lib + (result.message.empty() ? "" : "; " + result.message);
-    switch (tracker.stop_cause()) {
-      case StopCause::kNone:
-        break;
-      case StopCause::kMaxEvaluations:
-        result.status = OptimizerStatus::kMaxEvaluations;
-        break;
-      case StopCause::kMaxTime:
-        result.status = OptimizerStatus::kMaxTime;
-        break;
-      case StopCause::kStopFlag:
-        result.status = OptimizerStatus::kStopped;
-        break;
-      case StopCause::kError:
-        result.status = OptimizerStatus::kFailed;
-        break;
-    }
-    append(&result.message, tracker.stop_message());
+    tracker.apply_stop_cause(&result);
     if (r == NLOPT_FAILURE && tracker.stop_cause() == StopCause::kNone) {
       OptimizerResult counts;
       tracker.fill(&counts);
