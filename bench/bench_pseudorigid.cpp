@@ -1,6 +1,6 @@
 // Benchmarks of the pseudo-rigid engine on the seed's satellite (four 1 kg
 // masses, six internal springs, 20 s): cost and omega error per solver,
-// tolerance and error norm, a stiffness sweep, and RODAS4 vs DOPRI5; plus the
+// tolerance and error norm, a stiffness sweep, RODAS4 and RADAU5 vs DOPRI5; plus the
 // four-leg drop (studies/mechanisms/four_leg_drop.json): cost and energy-balance
 // drift with the barycentric and the minimum-norm ghost transfer.
 // Prints one JSON document; wall times are medians of 3 runs.
@@ -80,11 +80,15 @@ int main() {
     run("tolerance", 1e6, Method::kRodas4, tol, ErrorNorm::kState, &first);
     run("tolerance", 1e6, Method::kRodas4, tol, ErrorNorm::kBody, &first);
   }
+  for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+    run("tolerance_radau5", 1e6, Method::kRadau5, tol, ErrorNorm::kState, &first);
+  }
   run("explicit", 1e6, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
   run("explicit", 1e6, Method::kDopri5, 1e-8, ErrorNorm::kState, &first);
   for (double k : {1e4, 1e5, 1e6, 1e7, 1e8}) {
     run("stiffness", k, Method::kRodas4, 1e-6, ErrorNorm::kState, &first);
     run("stiffness_dopri5", k, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
+    run("stiffness_radau5", k, Method::kRadau5, 1e-8, ErrorNorm::kState, &first);
   }
   for (double tol : {1e-6, 1e-8}) {
     four_leg(GhostTransfer::kBarycentric, tol, &first);

@@ -207,7 +207,7 @@ class Loader {
           std::to_string(o->output_interval) + " s for t_end " + std::to_string(o->t_end) + " s");
     }
     const std::string method =
-        s.choice_or("method", "rodas4", {"euler", "rk2", "rk4", "dopri5", "rodas4"});
+        s.choice_or("method", "rodas4", {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5"});
     if (!ode::parse_method(method, &o->solver.method)) {
       throw s.error("method", "a solver name", method);
     }

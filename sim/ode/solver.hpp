@@ -18,9 +18,11 @@ enum class Method {
   kRk4,     ///< classic Runge-Kutta, fixed step, order 4
   kDopri5,  ///< Dormand-Prince 5(4), adaptive, 4th-order dense output
   kRodas4,  ///< Rosenbrock RODAS4 (Hairer-Wanner), L-stable, adaptive, 3rd-order dense output
+  kRadau5,  ///< Radau IIA order 5 (Hairer-Wanner RADAU5), fully implicit (Newton), L-stable,
+            ///< adaptive, collocation dense output; for stiff rotating springs
 };
 
-/// "euler", "rk2", "rk4", "dopri5", "rodas4".
+/// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5".
 std::string_view to_string(Method m);
 /// Parses the names of to_string; returns false on an unknown name.
 bool parse_method(std::string_view name, Method* out);
@@ -38,7 +40,7 @@ struct SolverOptions {
   double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
   double event_tol = 1e-13;    ///< event time tolerance [s]
   long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
-  /// rodas4: systems with at most this many states factorise with dense LU,
+  /// rodas4, radau5: systems with at most this many states factorise with dense LU,
   /// larger ones with Eigen's SparseLU (crossover measured in bench_pseudorigid).
   int dense_lu_max_dimension = 150;
 
@@ -52,8 +54,9 @@ struct SolverCounters {
   long steps_rejected = 0;
   long rhs_evaluations = 0;
   long events = 0;
-  long jacobian_evaluations = 0;  ///< analytic or finite-difference Jacobians (rodas4)
-  long lu_factorizations = 0;     ///< LU factorisations of I/(gamma h) - J (rodas4)
+  long jacobian_evaluations = 0;  ///< analytic or finite-difference Jacobians (rodas4, radau5)
+  long lu_factorizations = 0;     ///< LU factorisations of I/(gamma h) - J (rodas4; radau5
+                                  ///< counts its real + complex pair as one)
 };
 
 /// Outcome of one step attempt.

@@ -18,12 +18,15 @@ std::string_view to_string(Method m) {
       return "dopri5";
     case Method::kRodas4:
       return "rodas4";
+    case Method::kRadau5:
+      return "radau5";
   }
   return "unknown";
 }
 
 bool parse_method(std::string_view name, Method* out) {
-  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4}) {
+  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
+                   Method::kRadau5}) {
     if (name == to_string(m)) {
       *out = m;
       return true;
@@ -32,7 +35,9 @@ bool parse_method(std::string_view name, Method* out) {
   return false;
 }
 
-bool is_adaptive(Method m) { return m == Method::kDopri5 || m == Method::kRodas4; }
+bool is_adaptive(Method m) {
+  return m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5;
+}
 
 namespace {
 
@@ -58,7 +63,7 @@ bool positive_finite(std::string* error, const char* field, double value) {
 bool SolverOptions::validate(std::string* error) const {
   if (to_string(method) == "unknown") {
     return fail(error, "method", static_cast<double>(static_cast<int>(method)),
-                "must be one of euler, rk2, rk4, dopri5, rodas4");
+                "must be one of euler, rk2, rk4, dopri5, rodas4, radau5");
   }
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;

@@ -17,4 +17,7 @@ std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n
 /// RODAS4 Rosenbrock method with error control and dense output.
 std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n);
 
+/// RADAU5 (Radau IIA, order 5) with simplified Newton, error control and dense output.
+std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n);
+
 }  // namespace pronk::ode::detail

@@ -10,11 +10,13 @@ using pronk::ode::Method;
 using pronk::ode::SolverOptions;
 
 TEST_CASE("ode: method names round-trip", "[ode]") {
-  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5}) {
+  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
+                   Method::kRadau5}) {
     Method parsed = Method::kEuler;
     REQUIRE(pronk::ode::parse_method(pronk::ode::to_string(m), &parsed));
     CHECK(parsed == m);
-    CHECK(pronk::ode::is_adaptive(m) == (m == Method::kDopri5));
+    CHECK(pronk::ode::is_adaptive(m) ==
+          (m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5));
   }
   Method out = Method::kRk4;
   CHECK_FALSE(pronk::ode::parse_method("rk45", &out));

@@ -1,0 +1,475 @@
+// RADAU5: the 3-stage Radau IIA collocation method of order 5 (stage order 3,
+// L-stable, stiffly accurate) in the form of Hairer & Wanner's code RADAU5
+// (Solving ODEs II, sec. IV.8): the 3n stage equations are solved by a
+// simplified Newton iteration that the eigen-decomposition of the inverse
+// Butcher matrix splits into one real and one complex n x n system; the error
+// estimate is filtered through (gamma/h - J)^-1; dense output is the
+// collocation polynomial; the Jacobian and the factorisations are reused while
+// the Newton iteration converges fast.
+//
+// Why pronk has it next to RODAS4: a Rosenbrock method linearises the stiff
+// forces once per step. For stiff springs that rotate (every spinning or
+// swinging pseudo-rigid body) the spring direction turns by omega*h within a
+// step, and the error of that linearisation, of order k (v h)^2 / l, dwarfs
+// the physical forces: RODAS4 then either resolves the internal vibration or
+// loses the body's angular velocity (measured: satellite k = 1e6 N/m, 2763
+// steps, omega error 7 %). A fully implicit method solves the stage equations
+// with the nonlinear forces themselves and steps over the vibration.
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include <Eigen/LU>
+#include <Eigen/SparseLU>
+
+#include "sim/ode/steppers.hpp"
+
+namespace pronk::ode::detail {
+namespace {
+
+using Cplx = std::complex<double>;
+using CVec = Eigen::VectorXcd;
+
+/// The method's constants (Hairer's RADAU5, computed once).
+struct Radau5Constants {
+  double c1, c2, c1m1, c2m1, c1mc2;
+  double dd1, dd2, dd3;
+  double u1, alph, beta;  ///< eigenvalues gamma, alpha +- i beta of A^-1
+  double t11 = 9.1232394870892942792e-02, t12 = -0.14125529502095420843,
+         t13 = -3.0029194105147424492e-02;
+  double t21 = 0.24171793270710701896, t22 = 0.20412935229379993199, t23 = 0.38294211275726193779;
+  double t31 = 0.96604818261509293619;
+  double ti11 = 4.3255798900631553510, ti12 = 0.33919925181580986954, ti13 = 0.54177053993587487119;
+  double ti21 = -4.1787185915519047273, ti22 = -0.32768282076106238708,
+         ti23 = 0.47662355450055045196;
+  double ti31 = -0.50287263494578687595, ti32 = 2.5719269498556054292,
+         ti33 = -0.59603920482822492497;
+
+  Radau5Constants() {
+    const double sq6 = std::sqrt(6.0);
+    c1 = (4.0 - sq6) / 10.0;
+    c2 = (4.0 + sq6) / 10.0;
+    c1m1 = c1 - 1.0;
+    c2m1 = c2 - 1.0;
+    c1mc2 = c1 - c2;
+    dd1 = -(13.0 + 7.0 * sq6) / 3.0;
+    dd2 = (-13.0 + 7.0 * sq6) / 3.0;
+    dd3 = -1.0 / 3.0;
+    const double c81 = std::cbrt(81.0), c9 = std::cbrt(9.0);
+    u1 = (6.0 + c81 - c9) / 30.0;
+    alph = (12.0 - c81 + c9) / 60.0;
+    beta = (c81 + c9) * std::sqrt(3.0) / 60.0;
+    const double cno = alph * alph + beta * beta;
+    u1 = 1.0 / u1;
+    alph /= cno;
+    beta /= cno;
+  }
+};
+
+const Radau5Constants& k() {
+  static const Radau5Constants constants;
+  return constants;
+}
+
+// Controller constants (RADAU5 defaults).
+constexpr int kNit = 7;                       ///< Newton iterations per attempt
+constexpr double kSafe = 0.9;                 ///< safety factor
+constexpr double kFacL = 5.0;                 ///< largest decrease: h / 5
+constexpr double kFacR = 1.0 / 8.0;           ///< largest increase: 8 h
+constexpr double kThet = 1e-3;                ///< Newton rate below which the Jacobian is reused
+constexpr double kQuot1 = 1.0, kQuot2 = 1.2;  ///< keep h (and the LU) if hnew/h is in here
+constexpr int kMaxFailures = 12;              ///< consecutive failed attempts before giving up
+
+class Radau5Stepper final : public Stepper {
+ public:
+  Radau5Stepper(const SolverOptions& options, int n)
+      : h_max_(options.h_max),
+        h_min_(options.h_min),
+        h_initial_(options.h_initial),
+        use_dense_(n <= options.dense_lu_max_dimension),
+        n_(n) {
+    // RADAU5 maps the user's tolerances to the ones its order-3 error
+    // estimate needs (rtol' = 0.1 rtol^(2/3), atol' = rtol' atol / rtol).
+    const double quot = options.atol / options.rtol;
+    rtol_ = 0.1 * std::pow(options.rtol, 2.0 / 3.0);
+    atol_ = rtol_ * quot;
+    const double eps = std::numeric_limits<double>::epsilon();
+    fnewt_ = std::max(10.0 * eps / rtol_, std::min(0.03, std::sqrt(rtol_)));
+    for (Vec* v : {&y_, &y_new_, &f0_, &tmp_, &scal_, &z1_, &z2_, &z3_, &w1_, &w2_, &w3_, &g1_,
+                   &g2_, &g3_, &cont1_, &cont2_, &cont3_, &err_}) {
+      *v = Vec::Zero(n);
+    }
+    cz_ = CVec::Zero(n);
+  }
+
+  void reset(const OdeSystem& sys, double t, const Vec& y) override {
+    assert(y.size() == y_.size());
+    t_ = t;
+    t_prev_ = t;
+    h_last_ = 0.0;
+    y_ = y;
+    sys.rhs(t_, y_, f0_);
+    ++counters_.rhs_evaluations;
+    jacobian_fresh_ = false;
+    have_jacobian_ = false;
+    first_ = true;
+    if (!h_chosen_) {
+      h_ = h_initial_ > 0.0 ? std::min(h_initial_, h_max_) : 1e-6;
+      h_chosen_ = true;
+    }
+  }
+
+  StepStatus step(const OdeSystem& sys, double t_limit) override {
+    if (!(t_limit > t_)) return StepStatus::kOk;
+    const auto& c = k();
+    bool reject = false;
+    int failures = 0;
+    if (!have_jacobian_) evaluate_jacobian(sys);
+    for (int i = 0; i < n_; ++i) scal_[i] = atol_ + rtol_ * std::abs(y_[i]);
+    for (;;) {
+      if (failures > kMaxFailures) return StepStatus::kNonFinite;
+      const double h_adapted = std::min(h_, h_max_);
+      double h = h_adapted;
+      double t_new = t_ + h;
+      if (t_ + 1.01 * h >= t_limit) {
+        h = t_limit - t_;
+        t_new = t_limit;
+      }
+      if (!(t_new > t_)) return StepStatus::kStepSizeCollapse;
+      if (h_adapted < h_min_) return StepStatus::kStepSizeCollapse;
+
+      // A failed attempt recomputes the Jacobian at the step start unless it is fresh.
+      auto retry = [&](double h_next) {
+        ++counters_.steps_rejected;
+        reject = true;
+        ++failures;
+        h_ = h_next;
+        if (!jacobian_fresh_) evaluate_jacobian(sys);
+      };
+
+      if (!factorize(h)) {
+        retry(0.5 * h);
+        continue;
+      }
+      const double fac1 = c.u1 / h, alphn = c.alph / h, betan = c.beta / h;
+
+      // Starting values: the previous step's collocation polynomial, or zero.
+      if (first_ || !(h_last_ > 0.0)) {
+        z1_.setZero();
+        z2_.setZero();
+        z3_.setZero();
+        w1_.setZero();
+        w2_.setZero();
+        w3_.setZero();
+      } else {
+        const double c3q = h / h_last_, c1q = c.c1 * c3q, c2q = c.c2 * c3q;
+        z1_ = c1q * (cont1_ + (c1q - c.c2m1) * (cont2_ + (c1q - c.c1m1) * cont3_));
+        z2_ = c2q * (cont1_ + (c2q - c.c2m1) * (cont2_ + (c2q - c.c1m1) * cont3_));
+        z3_ = c3q * (cont1_ + (c3q - c.c2m1) * (cont2_ + (c3q - c.c1m1) * cont3_));
+        w1_ = c.ti11 * z1_ + c.ti12 * z2_ + c.ti13 * z3_;
+        w2_ = c.ti21 * z1_ + c.ti22 * z2_ + c.ti23 * z3_;
+        w3_ = c.ti31 * z1_ + c.ti32 * z2_ + c.ti33 * z3_;
+      }
+
+      // Simplified Newton iteration.
+      faccon_ = std::pow(std::max(faccon_, std::numeric_limits<double>::epsilon()), 0.8);
+      theta_ = kThet;
+      int newt = 0;
+      double dynold = 0.0, thqold = 0.0;
+      enum class Outcome { kConverged, kSlow, kFailed } outcome = Outcome::kFailed;
+      double h_slow = h;
+      for (;;) {
+        if (newt >= kNit) break;
+        tmp_ = y_ + z1_;
+        sys.rhs(t_ + c.c1 * h, tmp_, g1_);
+        tmp_ = y_ + z2_;
+        sys.rhs(t_ + c.c2 * h, tmp_, g2_);
+        tmp_ = y_ + z3_;
+        sys.rhs(t_new, tmp_, g3_);
+        counters_.rhs_evaluations += 3;
+        if (!g1_.allFinite() || !g2_.allFinite() || !g3_.allFinite()) break;
+        // Right-hand sides of the transformed systems (stored in z1_, z2_, z3_).
+        z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_ - fac1 * w1_;
+        z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_ - alphn * w2_ + betan * w3_;
+        z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_ - alphn * w3_ - betan * w2_;
+        solve_real(z1_);
+        solve_complex(z2_, z3_);
+        ++newt;
+        double dyno = 0.0;
+        for (int i = 0; i < n_; ++i) {
+          const double a = z1_[i] / scal_[i], b = z2_[i] / scal_[i], d = z3_[i] / scal_[i];
+          dyno += a * a + b * b + d * d;
+        }
+        dyno = std::sqrt(dyno / (3.0 * n_));
+        if (!std::isfinite(dyno)) break;
+        if (newt > 1 && newt < kNit) {
+          const double thq = dyno / dynold;
+          theta_ = newt == 2 ? thq : std::sqrt(thq * thqold);
+          thqold = thq;
+          if (theta_ < 0.99) {
+            faccon_ = theta_ / (1.0 - theta_);
+            const double dyth = faccon_ * dyno * std::pow(theta_, kNit - 1 - newt) / fnewt_;
+            if (dyth >= 1.0) {
+              const double qnewt = std::clamp(dyth, 1e-4, 20.0);
+              h_slow = 0.8 * std::pow(qnewt, -1.0 / (4.0 + kNit - 1 - newt)) * h;
+              outcome = Outcome::kSlow;
+              break;
+            }
+          } else {
+            break;  // diverging
+          }
+        }
+        dynold = std::max(dyno, std::numeric_limits<double>::epsilon());
+        w1_ += z1_;
+        w2_ += z2_;
+        w3_ += z3_;
+        z1_ = c.t11 * w1_ + c.t12 * w2_ + c.t13 * w3_;
+        z2_ = c.t21 * w1_ + c.t22 * w2_ + c.t23 * w3_;
+        z3_ = c.t31 * w1_ + w2_;
+        if (faccon_ * dyno <= fnewt_) {
+          outcome = Outcome::kConverged;
+          break;
+        }
+      }
+      if (outcome == Outcome::kSlow) {
+        retry(h_slow);
+        continue;
+      }
+      if (outcome == Outcome::kFailed) {
+        retry(0.5 * h);
+        continue;
+      }
+
+      // Error estimate, filtered through (gamma/h - J)^-1.
+      const double err = estimate_error(sys, h, reject);
+      if (!std::isfinite(err)) {
+        retry(0.5 * h);
+        continue;
+      }
+      const double fac = std::min(kSafe, kSafe * (1.0 + 2.0 * kNit) / (newt + 2.0 * kNit));
+      double quot = std::clamp(std::pow(err, 0.25) / fac, kFacR, kFacL);
+      double h_new = h / quot;
+      if (err < 1.0) {
+        if (!first_ && h_acc_ > 0.0) {  // Gustafsson's predictive controller
+          double facgus = (h_acc_ / h) * std::pow(err * err / err_acc_, 0.25) / kSafe;
+          facgus = std::clamp(facgus, kFacR, kFacL);
+          quot = std::max(quot, facgus);
+          h_new = h / quot;
+        }
+        h_acc_ = h;
+        err_acc_ = std::max(1e-2, err);
+        first_ = false;
+        accept(sys, h, t_new);
+        h_new = std::min(h_new, h_max_);
+        if (reject) h_new = std::min(h_new, h);
+        const double qt = h_new / h;
+        if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;    // keep h and the LU
+        if (h < h_adapted && !reject) h_new = std::max(h_new, h_adapted);  // clipped at t_limit
+        h_ = h_new;
+        // Reuse the Jacobian while the Newton iteration converges this fast.
+        if (theta_ <= kThet) {
+          jacobian_fresh_ = false;
+        } else {
+          have_jacobian_ = false;
+        }
+        return StepStatus::kOk;
+      }
+      retry(first_ ? 0.1 * h : h_new);
+    }
+  }
+
+  void dense(double t, Vec& y_out) const override {
+    y_out.resize(y_.size());
+    if (!(h_last_ > 0.0)) {
+      y_out = y_;
+      return;
+    }
+    const auto& c = k();
+    const double s = (t - t_) / h_last_;  // in [-1, 0]
+    y_out = y_ + s * (cont1_ + (s - c.c2m1) * (cont2_ + (s - c.c1m1) * cont3_));
+  }
+
+  double t() const override { return t_; }
+  double t_prev() const override { return t_prev_; }
+  const Vec& y() const override { return y_; }
+  double h() const override { return h_; }
+  const SolverCounters& counters() const override { return counters_; }
+  SolverCounters& mutable_counters() override { return counters_; }
+
+ private:
+  void evaluate_jacobian(const OdeSystem& sys) {
+    const Eigen::Index n = y_.size();
+    if (sys.has_jacobian()) {
+      sys.jacobian(t_, y_, j_sparse_);
+      assert(j_sparse_.rows() == n && j_sparse_.cols() == n);
+    } else {
+      Eigen::MatrixXd jd(n, n);
+      tmp_ = y_;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double delta = std::sqrt(1e-16 * std::max(1e-5, std::abs(y_[i])));
+        tmp_[i] = y_[i] + delta;
+        sys.rhs(t_, tmp_, g1_);
+        jd.col(i) = (g1_ - f0_) / delta;
+        tmp_[i] = y_[i];
+      }
+      counters_.rhs_evaluations += n;
+      j_sparse_ = jd.sparseView();
+    }
+    ++counters_.jacobian_evaluations;
+    have_jacobian_ = true;
+    jacobian_fresh_ = true;
+    h_factored_ = -1.0;
+  }
+
+  /// Factorises E1 = (gamma/h) I - J and E2 = ((alpha + i beta)/h) I - J
+  /// (counted as one factorisation of the iteration matrices).
+  bool factorize(double h) {
+    if (h == h_factored_) return factorization_ok_;
+    const auto& c = k();
+    const Eigen::Index n = y_.size();
+    const double fac1 = c.u1 / h;
+    const Cplx fac2(c.alph / h, c.beta / h);
+    ++counters_.lu_factorizations;
+    h_factored_ = h;
+    factorization_ok_ = true;
+    if (use_dense_) {
+      e1_dense_ = -Eigen::MatrixXd(j_sparse_);
+      e2_dense_ = e1_dense_.cast<Cplx>();
+      e1_dense_.diagonal().array() += fac1;
+      e2_dense_.diagonal().array() += fac2;
+      lu1_dense_.compute(e1_dense_);
+      lu2_dense_.compute(e2_dense_);
+      const auto& l1 = lu1_dense_.matrixLU();
+      const auto& l2 = lu2_dense_.matrixLU();
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (!(std::abs(l1(i, i)) > 0.0) || !std::isfinite(l1(i, i))) factorization_ok_ = false;
+        if (!(std::abs(l2(i, i)) > 0.0) || !std::isfinite(std::abs(l2(i, i)))) {
+          factorization_ok_ = false;
+        }
+      }
+    } else {
+      e1_sparse_ = -j_sparse_;
+      for (Eigen::Index i = 0; i < n; ++i) e1_sparse_.coeffRef(i, i) += fac1;
+      e1_sparse_.makeCompressed();
+      e2_sparse_ = (-j_sparse_).cast<Cplx>();
+      for (Eigen::Index i = 0; i < n; ++i) e2_sparse_.coeffRef(i, i) += fac2;
+      e2_sparse_.makeCompressed();
+      lu1_sparse_.compute(e1_sparse_);
+      lu2_sparse_.compute(e2_sparse_);
+      factorization_ok_ =
+          lu1_sparse_.info() == Eigen::Success && lu2_sparse_.info() == Eigen::Success;
+    }
+    return factorization_ok_;
+  }
+
+  void solve_real(Vec& b) {
+    if (use_dense_) {
+      b = lu1_dense_.solve(b);
+    } else {
+      b = lu1_sparse_.solve(b);
+    }
+  }
+
+  /// Solves E2 (re + i im) = (re + i im) in place.
+  void solve_complex(Vec& re, Vec& im) {
+    for (int i = 0; i < n_; ++i) cz_[i] = Cplx(re[i], im[i]);
+    if (use_dense_) {
+      cz_ = lu2_dense_.solve(cz_);
+    } else {
+      cz_ = lu2_sparse_.solve(cz_);
+    }
+    re = cz_.real();
+    im = cz_.imag();
+  }
+
+  double norm_of(const OdeSystem& sys, const Vec& e) const {
+    if (sys.has_error_norm()) {
+      tmp_ = y_ + z3_;
+      return sys.error_norm(e, y_, tmp_, rtol_, atol_);
+    }
+    double sum = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      const double q = e[i] / scal_[i];
+      sum += q * q;
+    }
+    return std::sqrt(sum / std::max(1, n_));
+  }
+
+  /// Hairer's estimate err = (gamma/h - J)^-1 (f0 + sum dd_i z_i / h), with one
+  /// more filtering pass after a rejection or on the first step.
+  double estimate_error(const OdeSystem& sys, double h, bool reject) {
+    const auto& c = k();
+    g2_ = (c.dd1 / h) * z1_ + (c.dd2 / h) * z2_ + (c.dd3 / h) * z3_;
+    err_ = g2_ + f0_;
+    solve_real(err_);
+    double err = std::max(norm_of(sys, err_), 1e-10);
+    if (err >= 1.0 && (first_ || reject)) {
+      tmp_ = y_ + err_;
+      sys.rhs(t_, tmp_, g1_);
+      ++counters_.rhs_evaluations;
+      err_ = g1_ + g2_;
+      solve_real(err_);
+      err = std::max(norm_of(sys, err_), 1e-10);
+    }
+    return err;
+  }
+
+  void accept(const OdeSystem& sys, double h, double t_new) {
+    const auto& c = k();
+    y_new_ = y_ + z3_;
+    // Collocation polynomial in s = (t - t_new) / h, s in [-1, 0].
+    cont1_ = (z2_ - z3_) / c.c2m1;
+    g1_ = (z1_ - z2_) / c.c1mc2;  // ak
+    g2_ = z1_ / c.c1;
+    g2_ = (g1_ - g2_) / c.c2;  // acont3
+    cont2_ = (g1_ - cont1_) / c.c1m1;
+    cont3_ = cont2_ - g2_;
+    y_.swap(y_new_);
+    t_prev_ = t_;
+    t_ = t_new;
+    h_last_ = h;
+    sys.rhs(t_, y_, f0_);
+    ++counters_.rhs_evaluations;
+    ++counters_.steps_accepted;
+  }
+
+  double rtol_ = 0.0, atol_ = 0.0;  ///< transformed tolerances
+  double fnewt_ = 0.0;              ///< Newton stopping tolerance
+  double h_max_, h_min_, h_initial_;
+  bool use_dense_;
+  int n_;
+  double t_ = 0.0, t_prev_ = 0.0;  ///< [s]
+  double h_ = 0.0;                 ///< next trial step [s]
+  double h_last_ = 0.0;            ///< last accepted step, 0 after reset [s]
+  double h_acc_ = 0.0, err_acc_ = 1e-2;
+  double h_factored_ = -1.0;  ///< [s]
+  double faccon_ = 1.0, theta_ = kThet;
+  bool factorization_ok_ = false;
+  bool h_chosen_ = false;
+  bool first_ = true;
+  bool have_jacobian_ = false;   ///< j_sparse_ holds a Jacobian (maybe of an earlier point)
+  bool jacobian_fresh_ = false;  ///< ... evaluated at (t_, y_)
+  Vec y_, y_new_, f0_, scal_, z1_, z2_, z3_, w1_, w2_, w3_, g1_, g2_, g3_, cont1_, cont2_, cont3_,
+      err_;
+  mutable Vec tmp_;
+  CVec cz_;
+  Eigen::SparseMatrix<double> j_sparse_, e1_sparse_;
+  Eigen::SparseMatrix<Cplx> e2_sparse_;
+  Eigen::MatrixXd e1_dense_;
+  Eigen::MatrixXcd e2_dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu1_dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> lu2_dense_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu1_sparse_;
+  Eigen::SparseLU<Eigen::SparseMatrix<Cplx>> lu2_sparse_;
+  SolverCounters counters_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n) {
+  return std::make_unique<Radau5Stepper>(options, n);
+}
+
+}  // namespace pronk::ode::detail
