@@ -41,7 +41,8 @@ struct SolverOptions {
   double event_tol = 1e-13;    ///< event time tolerance [s]
   long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
   /// rodas4, radau5: systems with at most this many states factorise with dense LU,
-  /// larger ones with Eigen's SparseLU (crossover measured in bench_lu_crossover: sparse wins from ~192 states).
+  /// larger ones with Eigen's SparseLU (crossover measured in bench_lu_crossover: sparse wins from
+  /// ~192 states).
   int dense_lu_max_dimension = 150;
 
   /// Checks every field; on failure writes "field: value: rule" into *error.
