@@ -18,8 +18,10 @@ struct BodyFrame {
 };
 
 /// Orthogonal Procrustes (Kabsch): the proper rotation R minimising
-/// sum |R local_i - (x_i - c)|^2 via the SVD of M = sum (x_i - c) local_i^T,
-/// with the reflection case mapped to the nearest proper rotation.
+/// sum |R local_i - (x_i - c)|^2: the rotation factor of the polar
+/// decomposition of M = sum (x_i - c) local_i^T (Newton iteration), or, when M
+/// is singular or reflecting, from its SVD with the reflection mapped to the
+/// nearest proper rotation.
 BodyFrame fit_attitude(const std::array<Eigen::Vector3d, 4>& x,
                        const std::array<Eigen::Vector3d, 4>& local);
 

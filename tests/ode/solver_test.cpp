@@ -121,6 +121,9 @@ OrderCase order_case(Method m) {
       return {4.0, {20, 40, 80, 160}};
     case Method::kDopri5:
       return {5.0, {40, 80, 160}};
+    case Method::kRodas4:  // stiff solvers: rosenbrock_test.cpp, radau5_test.cpp
+    case Method::kRadau5:
+      break;
   }
   return {};
 }
@@ -152,6 +155,9 @@ long stages(Method m) {
       return 4;
     case Method::kDopri5:
       return 6;
+    case Method::kRodas4:  // not part of this generic suite
+    case Method::kRadau5:
+      break;
   }
   return 0;
 }
