@@ -4,6 +4,7 @@
 #include <random>
 
 #include <Eigen/Dense>
+#include <Eigen/SVD>
 #include <catch2/catch.hpp>
 
 #include "sim/math/rotation.hpp"
@@ -93,7 +94,22 @@ TEST_CASE("Kabsch attitude recovers rotations and stays a proper rotation when d
     const BodyFrame fd = fit_attitude(xd, local);
     CHECK(std::abs(fd.rotation.determinant() - 1.0) < 1e-12);
     CHECK((fd.rotation.transpose() * fd.rotation - Eigen::Matrix3d::Identity()).norm() < 1e-12);
+    // Independent reference: the Kabsch rotation from the SVD of M.
+    Eigen::Vector3d cd = Eigen::Vector3d::Zero();
+    for (const auto& xi : xd) cd += 0.25 * xi;
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 4; ++i) m += (xd[i] - cd) * local[i].transpose();
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+    if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) d(2, 2) = -1.0;
+    CHECK((fd.rotation - svd.matrixU() * d * svd.matrixV().transpose()).norm() < 1e-12);
   }
+  // An inverted (reflected) configuration still yields a proper rotation.
+  std::array<Eigen::Vector3d, 4> mirrored;
+  for (int i = 0; i < 4; ++i)
+    mirrored[i] = Eigen::Vector3d(-local[i].x(), local[i].y(), local[i].z());
+  const BodyFrame fm = fit_attitude(mirrored, local);
+  CHECK(std::abs(fm.rotation.determinant() - 1.0) < 1e-12);
 }
 
 TEST_CASE("ghost point: net force and moment equal the applied ones to 1e-12", "[pseudorigid]") {
