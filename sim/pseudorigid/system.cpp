@@ -19,6 +19,17 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
       dframes_(m.bodies.size()),
       force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))) {
   for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
+  bool attached = false;
+  for (const Surface& s : m.surfaces) attached = attached || s.body >= 0;
+  for (const Connection& c : m.connections) {
+    has_power_flows_ = has_power_flows_ || c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0 ||
+                       c.kind == ConnectionClass::kActuator;
+  }
+  for (const Surface& s : m.surfaces) has_power_flows_ = has_power_flows_ || s.damping > 0.0;
+  has_power_flows_ = has_power_flows_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
+  rhs_needs_frames_ =
+      attached || !m.body_forces.empty() || !m.impulse_actuators.empty() ||
+      (m.simulation.ghost_transfer == GhostTransfer::kMinNorm && !m.ghost_points.empty());
 }
 
 void MechanismSystem::update_frames(const ode::Vec& y, bool derivatives) const {
@@ -165,12 +176,18 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
 }
 
 void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
-                                              std::vector<std::pair<int, Vector3d>>& out) const {
+                                              std::vector<std::pair<int, Vector3d>>& out,
+                                              const BodyFrame* known_frame) const {
   const Body& body = m_.bodies[s.body];
   const GhostPoint& gp = m_.ghost_points[s.ghost];
-  std::array<Vector3d, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
-  const BodyFrame frame = fit_attitude(x, body.local);
+  BodyFrame frame;
+  if (known_frame != nullptr) {
+    frame = *known_frame;
+  } else {
+    std::array<Vector3d, 4> x;
+    for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
+    frame = fit_attitude(x, body.local);
+  }
   const Matrix3d& rot = frame.rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
   const Vector3d dir = rot * s.direction;
@@ -254,7 +271,7 @@ void MechanismSystem::attached_surface_jacobian(const Surface& s, const NodeRef&
 }
 
 void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
-  update_frames(y, false);
+  if (rhs_needs_frames_) update_frames(y, false);
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
   bool zero_length = false;
@@ -276,7 +293,7 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
         continue;
       }
       attached_.clear();
-      attached_surface_forces(s, n, y, attached_);
+      attached_surface_forces(s, n, y, attached_, &frames_[s.body]);
       for (const auto& [mass, f] : attached_) force_.segment<3>(3 * mass) += f;
     }
   }
@@ -468,7 +485,7 @@ double MechanismSystem::error_norm(const ode::Vec& err, const ode::Vec& y0, cons
 }
 
 Energies MechanismSystem::energies(const ode::Vec& y) const {
-  update_frames(y, false);
+  if (rhs_needs_frames_) update_frames(y, false);
   Energies e;
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) {
@@ -500,8 +517,9 @@ Energies MechanismSystem::energies(const ode::Vec& y) const {
 }
 
 PowerFlows MechanismSystem::power(const ode::Vec& y) const {
-  update_frames(y, false);
   PowerFlows p;
+  if (!has_power_flows_) return p;
+  if (rhs_needs_frames_) update_frames(y, false);
   for (const Connection& c : m_.connections) {
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
     const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
@@ -530,7 +548,7 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
 }
 
 StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
-  update_frames(y, false);
+  if (rhs_needs_frames_) update_frames(y, false);
   StateMonitors mon;
   for (const Connection& c : m_.connections) {
     if (c.kind != ConnectionClass::kInternal || c.rest_length <= 0.0) continue;

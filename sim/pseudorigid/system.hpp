@@ -94,8 +94,10 @@ class MechanismSystem final : public ode::OdeSystem {
   /// tau = -dU/dtheta distributed by the Kabsch derivative, f_k = Omega_k^T R^T tau;
   /// damping -b P (v_n - v_p) goes the same way (its power is exactly the
   /// dissipated power). Computed from y alone. Adds (mass, force [N]) pairs to out.
+  /// `known_frame`: the body's frame at y when the caller has it (else fitted here).
   void attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
-                               std::vector<std::pair<int, Eigen::Vector3d>>& out) const;
+                               std::vector<std::pair<int, Eigen::Vector3d>>& out,
+                               const BodyFrame* known_frame = nullptr) const;
   /// Jacobian blocks of attached_surface_forces by central differences.
   void attached_surface_jacobian(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
 
@@ -108,6 +110,13 @@ class MechanismSystem final : public ode::OdeSystem {
   mutable long zero_length_ = 0;
   mutable std::vector<std::pair<int, Eigen::Vector3d>> attached_;
   std::vector<double> inv_mass_;
+  /// The RHS (and energies, power, monitors) need body frames: body-relative forces
+  /// or actuators, body-attached surfaces, or the rotation-dependent min-norm
+  /// ghost transfer.
+  bool rhs_needs_frames_ = true;
+  /// Anything dissipates or does work (dampers, friction, drag, actuators, surface
+  /// dampers, body forces); otherwise power() is zero without evaluation.
+  bool has_power_flows_ = false;
 };
 
 /// Compares the analytic Jacobian at (t, y) with central differences of the
