@@ -104,12 +104,12 @@ RunSummary simulate(const Mechanism& m) {
   out.max_surface_force.assign(m.surfaces.size(), 0.0);
 
   double dissipated = 0.0, work = 0.0;
-  auto record = [&](double t, const ode::Vec& ys) {
+  auto record = [&](double t, const ode::Vec& ys, double dissipated_t, double work_t) {
     out.t.push_back(t);
     out.y.push_back(ys);
     out.energies.push_back(sys.energies(ys));
-    out.dissipated.push_back(dissipated);
-    out.actuator_work.push_back(work);
+    out.dissipated.push_back(dissipated_t);
+    out.actuator_work.push_back(work_t);
   };
   auto monitor = [&](const ode::Vec& ys) {
     const StateMonitors mon = sys.monitors(ys);
@@ -120,7 +120,7 @@ RunSummary simulate(const Mechanism& m) {
       out.max_surface_force[i] = std::max(out.max_surface_force[i], sf[i]);
     }
   };
-  record(0.0, y);
+  record(0.0, y, 0.0, 0.0);
   monitor(y);
   const Energies e0 = out.energies.front();
   const double balance0 = e0.total();
@@ -182,16 +182,32 @@ RunSummary simulate(const Mechanism& m) {
         diverge(buf);
         break;
       }
-      for (int q = 0; q < 3; ++q) {
-        stepper->dense(ta + gl_s[q] * (tb - ta), yq);
-        const PowerFlows p = sys.power(yq);
-        dissipated += gl_w[q] * (tb - ta) * p.dissipated;
-        work += gl_w[q] * (tb - ta) * p.actuator;
-      }
+      // Dissipation and actuator work over [ta, te] (te <= tb) by Gauss-Legendre on the
+      // step's dense output.
+      auto flows = [&](double te, double* d, double* w) {
+        for (int q = 0; q < 3; ++q) {
+          stepper->dense(ta + gl_s[q] * (te - ta), yq);
+          const PowerFlows p = sys.power(yq);
+          *d += gl_w[q] * (te - ta) * p.dissipated;
+          *w += gl_w[q] * (te - ta) * p.actuator;
+        }
+      };
+      const double dissipated_a = dissipated, work_a = work;
+      flows(tb, &dissipated, &work);
       monitor(yb);
       while (next_out <= tb * (1.0 + 1e-12) && next_out <= opt.t_end * (1.0 + 1e-12)) {
-        stepper->dense(std::min(next_out, tb), yq);
-        record(next_out, yq);
+        const double ts = std::min(next_out, tb);
+        // A sample inside the step pairs its energies with the flows up to the sample time,
+        // not up to the step end (that mismatch showed as a balance drift of the order of
+        // one step's dissipation: 2.5 % of the energy in a damped two-mass oscillator).
+        double ds = dissipated, ws = work;
+        if (ts < tb) {
+          ds = dissipated_a;
+          ws = work_a;
+          flows(ts, &ds, &ws);
+        }
+        stepper->dense(ts, yq);
+        record(next_out, yq, ds, ws);
         next_out = opt.output_interval * static_cast<double>(out.t.size());
       }
       const double balance = sys.energies(yb).total() + dissipated - work;
