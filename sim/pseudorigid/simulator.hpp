@@ -48,6 +48,9 @@ struct RunSummary {
   ///   penetration_above_budget  max penetration / constraint violation > penetration_budget
   ///   zero_length_rule          a connection of (near) zero length had no direction; the
   ///                             terms that need one were dropped in N RHS evaluations
+  ///   near_degenerate_inertia   a slender body (Imin/Imax < 1e-2) whose axial spin rate the
+  ///                             internal strain perturbs by > 1e-3 (estimate: strain x
+  ///                             Imax/Imin; momentum and energy stay accurate)
   std::map<std::string, std::string> warnings;
 };
 
