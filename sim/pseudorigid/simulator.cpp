@@ -39,6 +39,8 @@ std::vector<double> breakpoints(const Mechanism& m) {
 
 /// Smallest/largest principal moment below which a body counts as a slender rod.
 constexpr double kSlenderRatio = 1e-2;
+/// Energy-balance drift, relative to the energy scale, above which a completed run warns.
+constexpr double kEnergyDriftWarning = 1e-2;
 /// Estimated relative spin-rate error of a slender body above which the run warns.
 constexpr double kSpinErrorLimit = 1e-3;
 
@@ -275,6 +277,18 @@ RunSummary simulate(const Mechanism& m) {
                     b.name.c_str(), ratio, spin_error);
       out.warnings["near_degenerate_inertia"] = buf;
     }
+  }
+  if (out.status == RunStatus::kCompleted &&
+      out.energy_drift > kEnergyDriftWarning * out.energy_scale) {
+    // Below the blow-up factor, but not solver accuracy either: e.g. explicit Euler slowly
+    // pumping the internal vibration (1e-2 ... 10 of the scale before it is a blow-up).
+    std::snprintf(buf, sizeof buf,
+                  "the energy balance drifted by %.3g J, %.3g of the energy scale %.3g J: the "
+                  "step is too large or the tolerance too loose (an explicit solver near its "
+                  "stability limit, or the min_norm ghost transfer); do not read this run as "
+                  "physics",
+                  out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale);
+    out.warnings["energy_balance_drift"] = buf;
   }
   if (out.max_strain > opt.strain_budget) {
     std::snprintf(buf, sizeof buf,

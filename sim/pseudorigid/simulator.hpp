@@ -43,6 +43,8 @@ struct RunSummary {
   double jacobian_check_error = -1.0;     ///< relative, when requested; -1 = not run
   double t_reached = 0.0;                 ///< [s]
   /// Non-fatal diagnostics, each listed once: id -> one-line explanation with the numbers.
+  ///   energy_balance_drift      a completed run whose energy balance drifted by more than
+  ///                             1e-2 of the energy scale (blow-up is energy_blowup_factor)
   ///   strain_above_budget       max internal strain > simulation.strain_budget (bodies flex:
   ///                             the internal springs are too soft for the load)
   ///   penetration_above_budget  max penetration / constraint violation > penetration_budget
