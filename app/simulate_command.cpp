@@ -54,6 +54,9 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
     std::printf("  cost: %ld steps (%ld rejected), %ld RHS, %ld Jacobians, %ld LU, %.3f ms\n",
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
                 c.lu_factorizations, run.wall_time * 1e3);
+    for (const auto& [id, text] : run.warnings) {
+      std::printf("  warning (%s): %s\n", id.c_str(), text.c_str());
+    }
     if (run.jacobian_check_error >= 0.0) {
       std::printf("  Jacobian check: max relative difference %.3g\n", run.jacobian_check_error);
     }
@@ -92,6 +95,9 @@ int run_simulate(const SimulateArgs& args) {
     std::printf("  cost: %ld steps (%ld rejected), %ld RHS evaluations, %ld events, %.3f ms\n",
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.events,
                 run.cost.wall_time * 1e3);
+    for (const auto& [id, count] : run.warnings) {
+      std::printf("  warning: %s (%ld)\n", id.c_str(), count);
+    }
     std::printf("  outputs in %s/\n", dir.c_str());
   }
   return run.status == reduced::RunStatus::kCompleted ? 0 : 1;

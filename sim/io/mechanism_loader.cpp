@@ -236,6 +236,8 @@ class Loader {
     set->strain_budget = s.positive_or("strain_budget", set->strain_budget);
     set->penetration_budget = s.positive_or("penetration_budget", set->penetration_budget);
     set->load_factor = s.positive_or("load_factor", set->load_factor);
+    o->strain_budget = set->strain_budget;  // also the thresholds of the run's warnings
+    o->penetration_budget = set->penetration_budget;
     if (o->solver.h_max < o->solver.h_min) {
       throw s.error("h_max", "h_max >= h_min", std::to_string(o->solver.h_max));
     }

@@ -207,6 +207,9 @@ json mechanism_summary_json(const LoadedMechanism& scene, const pr::RunSummary& 
   mon["max_surface_force_N"] = sf;
   if (run.jacobian_check_error >= 0.0) mon["jacobian_check_error"] = run.jacobian_check_error;
   j["monitors"] = mon;
+  json warnings = json::object();
+  for (const auto& [id, text] : run.warnings) warnings[id] = text;
+  j["warnings"] = warnings;
   json st = {{"internal_auto", scene.internal_auto}, {"contact_auto", scene.contact_auto}};
   if (scene.internal_auto) {
     st["internal_min_N_per_m"] = scene.stiffness.internal_min;

@@ -35,6 +35,10 @@ double locate(const EventFunction& event, const Stepper& stepper, int dir, doubl
       const double margin = 0.25 * tol;
       if (std::isfinite(ts)) t = std::clamp(ts, a + margin, b - margin);
     }
+    // Past t ~ 256 s the margin is below the spacing of doubles, so a secant trial can round
+    // onto an end of a still wide bracket: bisect then, and stop only when not even the
+    // midpoint lies strictly inside (the bracket is one double wide).
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
     if (!(t > a && t < b)) break;  // no representable point inside the bracket
     stepper.dense(t, y);
     const double g = event.value(t, y);

@@ -29,6 +29,10 @@ bool SimulationOptions::validate(std::string* error) const {
   if (!(zero_length_epsilon > 0.0)) {
     return bad("zero_length_epsilon", zero_length_epsilon, "must be > 0");
   }
+  if (!(strain_budget > 0.0)) return bad("strain_budget", strain_budget, "must be > 0");
+  if (!(penetration_budget > 0.0)) {
+    return bad("penetration_budget", penetration_budget, "must be > 0");
+  }
   std::string e;
   if (!solver.validate(&e)) return fail(error, "solver." + e);
   if (error) error->clear();

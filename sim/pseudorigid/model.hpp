@@ -61,6 +61,12 @@ struct SimulationOptions {
   GhostTransfer ghost_transfer = GhostTransfer::kBarycentric;
   bool check_jacobian = false;  ///< compare the analytic Jacobian with central differences at t=0
   double zero_length_epsilon = 1e-12;  ///< connection length below which no direction exists [m]
+  /// Accuracy budgets: a run whose realised maximum internal strain (|l - l0| / l0) or
+  /// penetration / constraint violation [m] exceeds them completes with a warning
+  /// (RunSummary::warnings), so a user sees that the pseudo-rigid approximation did not hold.
+  /// The same numbers drive "internal_stiffness": "auto" / "contact_stiffness": "auto".
+  double strain_budget = 1e-4;
+  double penetration_budget = 1e-4;  ///< [m]
 
   static ode::SolverOptions default_solver() {
     ode::SolverOptions s;

@@ -5,6 +5,7 @@
 // in the result is finite.
 #pragma once
 
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,18 @@ struct RunSummary {
   std::vector<double> max_surface_force;  ///< per surface [N]
   double jacobian_check_error = -1.0;     ///< relative, when requested; -1 = not run
   double t_reached = 0.0;                 ///< [s]
+  /// Non-fatal diagnostics, each listed once: id -> one-line explanation with the numbers.
+  ///   energy_balance_drift      a completed run whose energy balance drifted by more than
+  ///                             1e-2 of the energy scale (blow-up is energy_blowup_factor)
+  ///   strain_above_budget       max internal strain > simulation.strain_budget (bodies flex:
+  ///                             the internal springs are too soft for the load)
+  ///   penetration_above_budget  max penetration / constraint violation > penetration_budget
+  ///   zero_length_rule          a connection of (near) zero length had no direction; the
+  ///                             terms that need one were dropped in N RHS evaluations
+  ///   near_degenerate_inertia   a slender body (Imin/Imax < 1e-2) whose axial spin rate the
+  ///                             internal strain perturbs by > 1e-3 (estimate: strain x
+  ///                             Imax/Imin; momentum and energy stay accurate)
+  std::map<std::string, std::string> warnings;
 };
 
 /// Simulates m from t = 0 to m.simulation.t_end.

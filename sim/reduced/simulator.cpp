@@ -105,6 +105,30 @@ class Sampler final : public ode::StepObserver {
   long count_ = 0;
 };
 
+/// Largest |angle| the seed's small-angle formulation is trusted with [rad]: it integrates
+/// the 1-2-3 angles as if they were integrals of the body rates, an error of first order in
+/// the angles.
+constexpr double kSmallAngleLimit = 15.0 * M_PI / 180.0;
+
+/// Watches every accepted step of the small-angle formulation for angles outside
+/// +-kSmallAngleLimit (the run then carries the warning "small_angle_range_exceeded"), and
+/// forwards the step to the next observer (the sampler), if any.
+class SmallAngleWatch final : public ode::StepObserver {
+ public:
+  SmallAngleWatch(const Layout& layout, ode::StepObserver* next) : layout_(layout), next_(next) {}
+  void on_step(const ode::Stepper& stepper, double t_stop) override {
+    if (!layout_.quaternion && stepper.y().segment<3>(6).cwiseAbs().maxCoeff() > kSmallAngleLimit) {
+      exceeded = true;
+    }
+    if (next_) next_->on_step(stepper, t_stop);
+  }
+  bool exceeded = false;  ///< in the current integration segment
+
+ private:
+  Layout layout_;
+  ode::StepObserver* next_;
+};
+
 std::string fmt(double x) {
   std::ostringstream s;
   s.precision(6);
@@ -142,7 +166,9 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3 };
 
   Sampler sampler(model, scene, &result.trajectory);
-  ode::StepObserver* observer = options.record_trajectory ? &sampler : nullptr;
+  ode::StepObserver* sampler_or_null = options.record_trajectory ? &sampler : nullptr;
+  SmallAngleWatch angle_watch(L, sampler_or_null);
+  ode::StepObserver* observer = small_angle ? &angle_watch : sampler_or_null;
   std::vector<StrideRecord>& strides = result.strides;
   StrideRecord current;  // the stride in progress
   bool have_stride = false;
@@ -174,7 +200,10 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   };
 
   stepper->reset(rhs, t, y);
-  if (observer) sampler.start(y);
+  if (options.record_trajectory) sampler.start(y);
+  if (small_angle && y.segment<3>(6).cwiseAbs().maxCoeff() > kSmallAngleLimit) {
+    angle_watch.exceeded = true;  // the initial attitude already leaves the range
+  }
 
   bool pending_touchdown = options.start_at_touchdown;
   bool running = true;
@@ -201,6 +230,11 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
     }
     t = r.t;
     y = stepper->y();
+    if (angle_watch.exceeded) {
+      // Counted once per integration segment (flight, stance) in which it happened.
+      ++result.warnings["small_angle_range_exceeded"];
+      angle_watch.exceeded = false;
+    }
     const int event = forced_touchdown ? kTouchdown
                       : r.reason == ode::StopReason::kEvent
                           ? (stance ? r.event_index + 1 : r.event_index)
