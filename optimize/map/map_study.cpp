@@ -35,6 +35,12 @@ std::string fmt(double v) {
   return b;
 }
 
+std::string fmt12(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.12g", v);
+  return b;
+}
+
 // "range" [lo, hi] with "count" points, linear or logarithmic spacing.
 void parse_axis_range(io::JsonReader& r, MapAxis& a, double lo_allowed, double hi_allowed) {
   r.optional("values");
@@ -53,8 +59,13 @@ void parse_axis_range(io::JsonReader& r, MapAxis& a, double lo_allowed, double h
         a.log_scale ? std::exp(std::log(rg[0]) + t * (std::log(rg[1]) - std::log(rg[0])))
                     : rg[0] + t * (rg[1] - rg[0]);
   }
-  a.values.front() = rg[0];  // exact end points
+  // Rounded to 12 significant digits (0.15, not 0.15000000000000002), exact end points.
+  for (double& x : a.values) x = std::stod(fmt12(x));
+  a.values.front() = rg[0];
   a.values.back() = rg[1];
+  for (size_t i = 1; i < a.values.size(); ++i)
+    if (!(a.values[i] > a.values[i - 1]))
+      throw r.error("count", "few enough points for distinct values (12 digits)", std::to_string(n));
 }
 
 MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {

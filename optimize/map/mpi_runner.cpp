@@ -35,6 +35,11 @@ bool mpi_launched() {
 
 namespace {
 
+// Every call goes through the PMPI_ entry points (MPI standard, profiling
+// interface): Debian's sequential MUMPS, linked in through Ipopt, exports fake
+// MPI_Init, MPI_Comm_rank (always 0), MPI_Finalize (no-op) and MPI_Wtime that
+// would otherwise shadow OpenMPI's (every rank would be rank 0 and never finalize).
+
 constexpr int kTagReady = 1;   // worker -> root: first request
 constexpr int kTagResult = 2;  // worker -> root: "position\n" + result JSON (also a request)
 constexpr int kTagTask = 3;    // root -> worker: {position, kind, index, good, bad}
@@ -50,14 +55,14 @@ void pause_briefly() { std::this_thread::sleep_for(std::chrono::microseconds(200
 
 MpiSession::MpiSession() {
   int provided = 0;
-  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  check(PMPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
   if (provided < MPI_THREAD_FUNNELED)
     throw std::runtime_error("MPI does not provide MPI_THREAD_FUNNELED");
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  PMPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  PMPI_Comm_size(MPI_COMM_WORLD, &size_);
 }
 
-MpiSession::~MpiSession() { MPI_Finalize(); }
+MpiSession::~MpiSession() { PMPI_Finalize(); }
 
 MpiRunner::MpiRunner(const MpiSession& session)
     : size_(session.size()), greeted_(static_cast<size_t>(session.size()), false) {}
@@ -77,11 +82,11 @@ void MpiRunner::release_workers() {
   for (int w = 1; w < size_; ++w) {
     if (!greeted_[static_cast<size_t>(w)]) {
       int dummy = 0;
-      check(MPI_Recv(&dummy, 1, MPI_INT, w, kTagReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+      check(PMPI_Recv(&dummy, 1, MPI_INT, w, kTagReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
             "MPI_Recv");
       greeted_[static_cast<size_t>(w)] = true;
     }
-    check(MPI_Send(nullptr, 0, MPI_INT, w, kTagStop, MPI_COMM_WORLD), "MPI_Send");
+    check(PMPI_Send(nullptr, 0, MPI_INT, w, kTagStop, MPI_COMM_WORLD), "MPI_Send");
   }
 }
 
@@ -122,7 +127,7 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
     const MapTask& t = tasks[static_cast<size_t>(i)];
     const double msg[5] = {static_cast<double>(i), static_cast<double>(t.kind),
                            static_cast<double>(t.index), t.good, t.bad};
-    check(MPI_Send(msg, 5, MPI_DOUBLE, worker, kTagTask, MPI_COMM_WORLD), "MPI_Send");
+    check(PMPI_Send(msg, 5, MPI_DOUBLE, worker, kTagTask, MPI_COMM_WORLD), "MPI_Send");
     ++outstanding;
   };
   std::vector<int> idle;
@@ -134,7 +139,7 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
       if (exhausted && outstanding == 0) break;
       int flag = 0;
       MPI_Status status;
-      check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+      check(PMPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
       if (!flag) {
         pause_briefly();
         continue;
@@ -142,14 +147,14 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
       const int src = status.MPI_SOURCE;
       if (status.MPI_TAG == kTagReady) {
         int dummy = 0;
-        check(MPI_Recv(&dummy, 1, MPI_INT, src, kTagReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        check(PMPI_Recv(&dummy, 1, MPI_INT, src, kTagReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
               "MPI_Recv");
         greeted_[static_cast<size_t>(src)] = true;
       } else if (status.MPI_TAG == kTagResult) {
         int count = 0;
-        MPI_Get_count(&status, MPI_CHAR, &count);
+        PMPI_Get_count(&status, MPI_CHAR, &count);
         std::string buf(static_cast<size_t>(count), '\0');
-        check(MPI_Recv(buf.data(), count, MPI_CHAR, src, kTagResult, MPI_COMM_WORLD,
+        check(PMPI_Recv(buf.data(), count, MPI_CHAR, src, kTagResult, MPI_COMM_WORLD,
                        MPI_STATUS_IGNORE),
               "MPI_Recv");
         --outstanding;
@@ -172,22 +177,22 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
 
 void mpi_serve(const MapStudy& st) {
   int dummy = 0;
-  check(MPI_Send(&dummy, 1, MPI_INT, 0, kTagReady, MPI_COMM_WORLD), "MPI_Send");
+  check(PMPI_Send(&dummy, 1, MPI_INT, 0, kTagReady, MPI_COMM_WORLD), "MPI_Send");
   while (true) {
     int flag = 0;
     MPI_Status status;
-    check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+    check(PMPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
     if (!flag) {
       pause_briefly();
       continue;
     }
     if (status.MPI_TAG == kTagStop) {
-      check(MPI_Recv(nullptr, 0, MPI_INT, 0, kTagStop, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+      check(PMPI_Recv(nullptr, 0, MPI_INT, 0, kTagStop, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
             "MPI_Recv");
       return;
     }
     double msg[5];
-    check(MPI_Recv(msg, 5, MPI_DOUBLE, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+    check(PMPI_Recv(msg, 5, MPI_DOUBLE, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
     MapTask t;
     t.kind = static_cast<int>(msg[1]);
     t.index = static_cast<long>(msg[2]);
@@ -196,7 +201,7 @@ void mpi_serve(const MapStudy& st) {
     const std::string out =
         std::to_string(static_cast<long>(msg[0])) + "\n" + compute_task(st, t).dump();
     check(
-        MPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kTagResult, MPI_COMM_WORLD),
+        PMPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kTagResult, MPI_COMM_WORLD),
         "MPI_Send");
   }
 }
