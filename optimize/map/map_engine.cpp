@@ -204,23 +204,25 @@ BoundaryResult initial_bracket(const MapStudy& st, const std::vector<CellSummary
   b.row = row;
   const auto& v = st.axes[0].values;
   const long nc = st.columns();
-  long first_bad = -1;
+  long last_good = -1;
+  for (long c = nc - 1; c >= 0 && last_good < 0; --c)
+    if (cells[static_cast<size_t>(row * nc + c)].all_stabilized) last_good = c;
   for (long c = 0; c < nc; ++c) {
-    if (!cells[static_cast<size_t>(row * nc + c)].all_stabilized) {
-      first_bad = c;
+    if (cells[static_cast<size_t>(row * nc + c)].all_stabilized) {
+      b.first_good = v[static_cast<size_t>(c)];
       break;
     }
   }
-  if (first_bad < 0) {
+  if (last_good == nc - 1) {
     b.status = "all_good";
     b.boundary = b.good = b.bad = v.back();
-  } else if (first_bad == 0) {
+  } else if (last_good < 0) {
     b.status = "none_good";
     b.boundary = b.good = b.bad = v.front();
   } else {
     b.status = "bisected";
-    b.good = b.boundary = v[static_cast<size_t>(first_bad - 1)];
-    b.bad = v[static_cast<size_t>(first_bad)];
+    b.good = b.boundary = v[static_cast<size_t>(last_good)];
+    b.bad = v[static_cast<size_t>(last_good + 1)];
   }
   return b;
 }

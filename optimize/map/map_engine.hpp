@@ -53,14 +53,16 @@ struct CellSummary {
 };
 
 /// Boundary of one row: the largest axis-0 value at which every trial of the
-/// primary model stabilizes, scanning from the low end (the first cell that
-/// loses a trial ends the scan), refined by bisection between the last good
-/// and the first bad cell until bad - good <= MapStudy::resolution.
+/// primary model stabilizes — the last cell of the row with all trials
+/// stabilized ("last good"), refined by bisection towards the next cell
+/// ("first bad" above it) until bad - good <= MapStudy::resolution. Also the
+/// lowest such cell (first_good), so a stable band shows both edges.
 struct BoundaryResult {
   long row = 0;
   std::string status;     ///< "bisected", "all_good" (no bad cell: boundary >= last value),
                           ///< "none_good" (first cell bad: boundary < first value)
   double boundary = 0.0;  ///< bisected: the good end; all_good: last value; none_good: first value
+  double first_good = 0.0;  ///< lowest axis-0 cell value with all trials stabilized (none_good: 0)
   double good = 0.0, bad = 0.0;  ///< final bracket [axis-0 unit]
   long probes = 0;               ///< bisection evaluations (each: N trials)
 };

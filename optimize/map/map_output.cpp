@@ -127,13 +127,14 @@ std::string boundary_csv(const MapStudy& st, const std::vector<CellSummary>& cel
                          const std::vector<BoundaryResult>& boundaries) {
   std::ostringstream o;
   o << "row," << (st.axes.size() > 1 ? st.axes[1].name : std::string("row_value"))
-    << ",status,boundary,good,bad,probes,resolution,first_disagreement\n";
+    << ",status,boundary,good,bad,probes,resolution,first_good,first_disagreement\n";
   for (const BoundaryResult& b : boundaries) {
     const double v1 = st.axes.size() > 1 ? st.axes[1].values[static_cast<size_t>(b.row)] : 0.0;
     const long fd = first_disagreement_column(st, cells, b.row);
     o << b.row << ',' << format_number(v1) << ',' << b.status << ',' << format_number(b.boundary)
       << ',' << format_number(b.good) << ',' << format_number(b.bad) << ',' << b.probes << ','
       << format_number(st.resolution) << ','
+      << (b.status == "none_good" ? std::string() : format_number(b.first_good)) << ','
       << (fd >= 0 ? format_number(st.axes[0].values[static_cast<size_t>(fd)]) : std::string())
       << '\n';
   }
@@ -222,6 +223,7 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
     json one = {{"row", b.row},   {"status", b.status}, {"boundary", b.boundary},
                 {"good", b.good}, {"bad", b.bad},       {"probes", b.probes}};
     if (st.axes.size() > 1) one[st.axes[1].name] = st.axes[1].values[static_cast<size_t>(b.row)];
+    one["first_good"] = b.status == "none_good" ? json(nullptr) : json(b.first_good);
     one["first_disagreement"] =
         fd >= 0 ? json(st.axes[0].values[static_cast<size_t>(fd)]) : json(nullptr);
     bj.push_back(one);
@@ -230,8 +232,8 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
                    {"resolution", st.resolution},
                    {"definition",
                     "per row, the largest axis value at which every trial of the primary model "
-                    "stabilizes, scanning from the low end, bisected between the last good and "
-                    "the first bad cell to the resolution"},
+                    "stabilizes: the last cell with all trials stabilized, bisected towards the "
+                    "next cell to the resolution; first_good is the lowest such cell"},
                    {"rows", bj}};
   j["files"] = {"cells.csv",        "trials.csv",      "boundary.csv",
                 "summary.json",     "fraction.svg",    "fraction.gp",

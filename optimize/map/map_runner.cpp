@@ -226,6 +226,10 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
         progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
       },
       options.stop_flag);
+  // The lower edge comes from the cells (not journaled).
+  for (long r = 0; r < st.rows(); ++r)
+    out.boundaries[static_cast<size_t>(r)].first_good =
+        initial_bracket(st, out.summaries, r).first_good;
   for (bool h : have_b) {
     if (!h) {
       out.status = "stopped";

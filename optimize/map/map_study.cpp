@@ -65,7 +65,8 @@ void parse_axis_range(io::JsonReader& r, MapAxis& a, double lo_allowed, double h
   a.values.back() = rg[1];
   for (size_t i = 1; i < a.values.size(); ++i)
     if (!(a.values[i] > a.values[i - 1]))
-      throw r.error("count", "few enough points for distinct values (12 digits)", std::to_string(n));
+      throw r.error("count", "few enough points for distinct values (12 digits)",
+                    std::to_string(n));
 }
 
 MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {

@@ -155,7 +155,7 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
         PMPI_Get_count(&status, MPI_CHAR, &count);
         std::string buf(static_cast<size_t>(count), '\0');
         check(PMPI_Recv(buf.data(), count, MPI_CHAR, src, kTagResult, MPI_COMM_WORLD,
-                       MPI_STATUS_IGNORE),
+                        MPI_STATUS_IGNORE),
               "MPI_Recv");
         --outstanding;
         const size_t nl = buf.find('\n');
@@ -192,7 +192,8 @@ void mpi_serve(const MapStudy& st) {
       return;
     }
     double msg[5];
-    check(PMPI_Recv(msg, 5, MPI_DOUBLE, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+    check(PMPI_Recv(msg, 5, MPI_DOUBLE, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+          "MPI_Recv");
     MapTask t;
     t.kind = static_cast<int>(msg[1]);
     t.index = static_cast<long>(msg[2]);
@@ -200,9 +201,9 @@ void mpi_serve(const MapStudy& st) {
     t.bad = msg[4];
     const std::string out =
         std::to_string(static_cast<long>(msg[0])) + "\n" + compute_task(st, t).dump();
-    check(
-        PMPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kTagResult, MPI_COMM_WORLD),
-        "MPI_Send");
+    check(PMPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kTagResult,
+                    MPI_COMM_WORLD),
+          "MPI_Send");
   }
 }
 
