@@ -6,6 +6,7 @@
 // executable beside this one).
 //
 //   build/bench_map [repeats=3] [cells_per_axis=30] [trials=16]
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -30,6 +31,21 @@ namespace {
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// CPU seconds of this process (all threads).
+double cpu_s() {
+  rusage u{};
+  ::getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// The 1-minute load average: the machine is shared, so timings need their context.
+double load_average() {
+  double l = 0.0;
+  std::ifstream("/proc/loadavg") >> l;
+  return l;
 }
 
 double median(std::vector<double> v) {
@@ -63,17 +79,19 @@ int main(int argc, char** argv) {
   std::ofstream(study_path) << doc.dump(2);
   const m::MapStudy st = m::parse_map_study(doc, study_path, dir);
 
-  std::vector<double> t1, t2;
+  std::vector<double> t1, t2, c1, c2;
   long simulations = 0;
+  const double load_before = load_average();
   for (int r = 0; r < repeats; ++r) {
     for (int threads : {1, 2}) {
       m::MapRunOptions opt;
       opt.threads = threads;
       opt.out_dir = dir + "/threads";
       opt.figures = false;
-      const double t0 = now();
+      const double t0 = now(), cpu0 = cpu_s();
       const m::MapOutcome o = m::run_map(st, opt);
       (threads == 1 ? t1 : t2).push_back(now() - t0);
+      (threads == 1 ? c1 : c2).push_back(cpu_s() - cpu0);
       simulations = o.simulations;
     }
   }
@@ -87,7 +105,10 @@ int main(int argc, char** argv) {
               {"threads_2_s", median(t2)},
               {"thread_speedup", median(t1) / median(t2)},
               {"threads_1_runs", t1},
-              {"threads_2_runs", t2}};
+              {"threads_2_runs", t2},
+              {"threads_1_cpu_s", median(c1)},
+              {"threads_2_cpu_s", median(c2)},
+              {"load_average_before", load_before}};
   if (m::mpi_built()) {
     // The pronk executable beside this benchmark, under mpirun (wall time of the whole process).
     const std::string exe =
@@ -114,6 +135,7 @@ int main(int argc, char** argv) {
     out["ranks_1_runs"] = r1;
     out["ranks_2_runs"] = r2;
   }
+  out["load_average_after"] = load_average();
   std::error_code ec;
   std::filesystem::remove_all(dir, ec);
   std::printf("%s\n", out.dump(2).c_str());
