@@ -139,3 +139,32 @@ TEST_CASE("the bisected boundary agrees with a dense scan of the row", "[map][bo
   CHECK(cb.trials[1][0].duty_mean == cells[1].trials[1][0].duty_mean);
   CHECK(cb.spectral_radius == cells[1].spectral_radius);
 }
+
+TEST_CASE("derived and pointer axes change the cell scene as documented", "[map]") {
+  nlohmann::json doc = pronk::test::tiny_map_document();
+  doc["axes"] = {{{"kind", "velocity_kick"}, {"values", {0.1, 0.3}}},
+                 {{"kind", "disturbance_direction_deg"}, {"values", {0, 90}}}};
+  m::MapStudy st = m::parse_map_study(doc, "t.json", ".");
+  pronk::scene::Scene s = m::scene_at(st, 0.3, 90, ModelKind::kPulse);
+  CHECK(s.initial.velocity.x() == Approx(0.0).margin(1e-15));
+  CHECK(s.initial.velocity.y() == Approx(0.3));
+  CHECK(s.model == ModelKind::kPulse);
+  doc["axes"] = {{{"kind", "disturbance_direction_deg"}, {"values", {0, 180}}, {"magnitude", 0.2}},
+                 {{"kind", "lateral_offset"}, {"values", {-0.1, 0.2}}}};
+  st = m::parse_map_study(doc, "t.json", ".");
+  s = m::scene_at(st, 180, 0.2, ModelKind::kImpulse);
+  CHECK(s.initial.velocity.x() == Approx(-0.2));
+  CHECK(s.initial.position.y() == Approx(0.2));
+  CHECK(s.model == ModelKind::kImpulse);
+  doc["axes"] = {
+      {{"kind", "tilt_deg"}, {"axis", {0, 2, 0}}, {"values", {0, 30}}},
+      {{"kind", "pointer"}, {"pointer", "/controller/bank/kp"}, {"values", {0.01, 0.2}}}};
+  st = m::parse_map_study(doc, "t.json", ".");
+  s = m::scene_at(st, 30, 0.2, ModelKind::kPulse);
+  CHECK(s.controller.bank_kp == 0.2);
+  const Eigen::Vector3d z = s.initial.attitude * Eigen::Vector3d::UnitZ();
+  CHECK(std::acos(z.z()) == Approx(30.0 * M_PI / 180));  // tilted 30 deg about body y
+  CHECK(z.x() == Approx(0.5));
+  // Cells differing only in a pointer axis have their own stride map.
+  CHECK(m::stability_owner(st, 3) == 2);  // row 1, column 1 -> row 1, column 0
+}
