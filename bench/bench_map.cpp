@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   std::ofstream(study_path) << doc.dump(2);
   const m::MapStudy st = m::parse_map_study(doc, study_path, dir);
 
-  std::vector<double> t1, t2, c1, c2;
+  std::vector<double> t1, t2, c1, c2, phase_cells, phase_bisect, phase_out;
   long simulations = 0;
   const double load_before = load_average();
   for (int r = 0; r < repeats; ++r) {
@@ -92,6 +92,11 @@ int main(int argc, char** argv) {
       const m::MapOutcome o = m::run_map(st, opt);
       (threads == 1 ? t1 : t2).push_back(now() - t0);
       (threads == 1 ? c1 : c2).push_back(cpu_s() - cpu0);
+      if (threads == 1) {
+        phase_cells.push_back(o.cells_time);
+        phase_bisect.push_back(o.bisection_time);
+        phase_out.push_back(o.output_time);
+      }
       simulations = o.simulations;
     }
   }
@@ -108,6 +113,9 @@ int main(int argc, char** argv) {
               {"threads_2_runs", t2},
               {"threads_1_cpu_s", median(c1)},
               {"threads_2_cpu_s", median(c2)},
+              {"threads_1_cells_s", median(phase_cells)},
+              {"threads_1_bisection_s", median(phase_bisect)},
+              {"threads_1_output_s", median(phase_out)},
               {"load_average_before", load_before}};
   if (m::mpi_built()) {
     // The pronk executable beside this benchmark, under mpirun (wall time of the whole process).

@@ -225,6 +225,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
     std::fprintf(stderr, "\rmap %s: %s %ld/%ld (%.0f s)", st.name.c_str(), what, n, total, t - t0);
     if (n >= total) std::fprintf(stderr, "\n");
   };
+  const double t_cells = now_s();
   runner.run(
       st, tasks,
       [&](const MapTask& task, const json& r) {
@@ -244,6 +245,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
       return out;
     }
   }
+  out.cells_time = now_s() - t_cells;
   out.summaries = summarize(st, cells);
 
   // Phase 2: the boundary of every row, bisected where a good cell is followed by a bad one.
@@ -265,6 +267,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
     }
   }
   long bdone = 0;
+  const double t_bisect = now_s();
   runner.run(
       st, tasks,
       [&](const MapTask& task, const json& r) {
@@ -275,6 +278,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
         progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
       },
       options.stop_flag);
+  out.bisection_time = now_s() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)
     out.boundaries[static_cast<size_t>(r)].first_good =
@@ -291,6 +295,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   journal.sync();
 
   // Results.
+  const double t_out = now_s();
   out.summary = summary_json(st, out.summaries, out.boundaries);
   out.simulations = out.summary["totals"]["simulations"].get<long>();
   io::write_file_atomic(out.out_dir + "/cells.csv", cells_csv(st, out.summaries));
@@ -305,6 +310,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
     else
       io::write_file_atomic(out.out_dir + "/" + what + ".gp", script);
   }
+  out.output_time = now_s() - t_out;
   out.wall_time = now_s() - t0;
   return out;
 }

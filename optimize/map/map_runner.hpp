@@ -74,6 +74,7 @@ struct MapOutcome {
   long rows_bisected = 0, bisections_replayed = 0;
   long simulations = 0;    ///< trial runs of the whole map (cells and probes)
   double wall_time = 0.0;  ///< [s]
+  double cells_time = 0.0, bisection_time = 0.0, output_time = 0.0;  ///< phases of wall_time [s]
   std::vector<CellSummary> summaries;
   std::vector<BoundaryResult> boundaries;
   nlohmann::json summary;  ///< summary.json
