@@ -290,16 +290,19 @@ std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& c
       << format_number(ey[static_cast<size_t>(c.row)]) << ' '
       << format_number(ey[static_cast<size_t>(c.row) + 1]) << ' ' << format_number(v) << '\n';
   }
-  o << "EOD\n# boundary: value, row value (bisected and all_good rows)\n$boundary << EOD\n";
-  bool any = false;
+  o << "EOD\n# boundary, row value, lowest cell with all trials stabilized (rows with one)\n"
+       "$boundary << EOD\n";
+  bool any = false, band = false;
   for (const BoundaryResult& b : boundaries) {
     if (b.status == "none_good") continue;
     any = true;
+    band = band || b.first_good > ax.values.front();
+    const std::string edges = format_number(b.boundary) + ' ';
+    const std::string lower = ' ' + format_number(b.first_good) + '\n';
     if (two_d) {
-      o << format_number(b.boundary) << ' '
-        << format_number(st.axes[1].values[static_cast<size_t>(b.row)]) << '\n';
+      o << edges << format_number(st.axes[1].values[static_cast<size_t>(b.row)]) << lower;
     } else {
-      o << format_number(b.boundary) << " 0\n" << format_number(b.boundary) << " 1\n";
+      o << edges << '0' << lower << edges << '1' << lower;
     }
   }
   o << "EOD\n";
@@ -308,6 +311,9 @@ std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& c
   if (any)
     o << ", \\\n     $boundary using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb 'black' title "
       << gp_quote("boundary: all " + primary + " trials stabilized") << " noenhanced";
+  if (band)
+    o << ", \\\n     $boundary using 3:2 with linespoints lw 2 dt 2 pt 6 ps 0.6 lc rgb 'black' "
+         "title 'lowest cell with all trials stabilized' noenhanced";
   o << "\n";
   return o.str();
 }

@@ -217,13 +217,13 @@ $cells << EOD
 0.49 20 0.485 0.495 17.5 22.5 0
 0.5 20 0.495 0.505 17.5 22.5 0
 EOD
-# boundary: value, row value (bisected and all_good rows)
+# boundary, row value, lowest cell with all trials stabilized (rows with one)
 $boundary << EOD
-0.2875 0
-0.27625 5
-0.24625 10
-0.2475 15
-0.17375 20
+0.2875 0 0.1
+0.27625 5 0.1
+0.24625 10 0.1
+0.2475 15 0.1
+0.17375 20 0.1
 EOD
 plot $cells using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette notitle, \
      $boundary using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb 'black' title 'boundary: all pulse trials stabilized' noenhanced

@@ -317,10 +317,11 @@ $cells << EOD
 0.69 20 0.685 0.695 17.5 22.5 0
 0.7 20 0.695 0.705 17.5 22.5 0
 EOD
-# boundary: value, row value (bisected and all_good rows)
+# boundary, row value, lowest cell with all trials stabilized (rows with one)
 $boundary << EOD
-0.5137499999999999 0
-0.5062500000000001 5
+0.5137499999999999 0 0.45
+0.5062500000000001 5 0.45
 EOD
 plot $cells using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette notitle, \
-     $boundary using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb 'black' title 'boundary: all pulse trials stabilized' noenhanced
+     $boundary using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb 'black' title 'boundary: all pulse trials stabilized' noenhanced, \
+     $boundary using 3:2 with linespoints lw 2 dt 2 pt 6 ps 0.6 lc rgb 'black' title 'lowest cell with all trials stabilized' noenhanced
