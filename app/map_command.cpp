@@ -117,6 +117,13 @@ int run_map_command(const MapArgs& args) {
     runner.release_workers();
     return rc;
   }
+#else
+  if (m::mpi_launched()) {
+    // N copies would each compute the whole map and write the same files.
+    std::cerr << "pronk: error: started by mpirun with several ranks, but this pronk was built "
+                 "without MPI (install libopenmpi-dev and rebuild)\n";
+    return 2;
+  }
 #endif
   const m::MapStudy st = m::load_map_study(args.study_path, args.overrides);
   const unsigned hw = std::thread::hardware_concurrency();
