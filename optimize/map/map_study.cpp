@@ -92,7 +92,6 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
                              : " (" + io::describe(scene_doc.at(jp)) + ")"));
     }
   } else {
-    r.optional("pointer");
     if (kind == "duty_cycle") {
       a.kind = AxisKind::kDutyCycle;
       lo = 1e-4;
@@ -119,15 +118,23 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
     const Eigen::Vector3d ax = r.vec3_or("axis", Eigen::Vector3d(1, 0, 0));
     if (!(ax.norm() > 1e-12)) throw r.error("axis", "a non-zero rotation axis", "a zero vector");
     a.tilt_axis = ax.normalized();
-  } else {
-    r.optional("axis");
   }
-  a.direction_deg = a.kind == AxisKind::kVelocityKick ? r.number_or("direction_deg", 90, -360, 360)
-                                                      : (r.optional("direction_deg"), 90.0);
-  if (a.kind == AxisKind::kDisturbanceDirection) {
+  if (a.kind == AxisKind::kVelocityKick)
+    a.direction_deg = r.number_or("direction_deg", 90, -360, 360);
+  if (a.kind == AxisKind::kDisturbanceDirection)
     a.magnitude = r.number_or("magnitude", 0.0, 0.0, 100.0);
-  } else {
-    r.optional("magnitude");
+  // Keys of other kinds are errors, not silently ignored.
+  const std::pair<const char*, AxisKind> own[] = {{"pointer", AxisKind::kPointer},
+                                                  {"axis", AxisKind::kTilt},
+                                                  {"direction_deg", AxisKind::kVelocityKick},
+                                                  {"magnitude", AxisKind::kDisturbanceDirection}};
+  for (const auto& [key, owner] : own) {
+    if (a.kind != owner && r.has(key)) {
+      throw r.error(key,
+                    "no \"" + std::string(key) + "\" on a \"" + kind + "\" axis (only on \"" +
+                        std::string(to_string(owner)) + "\")",
+                    "\"" + std::string(key) + "\"");
+    }
   }
   a.name = r.string_or("name", kind == "pointer" ? a.pointer : kind);
   if (a.name.empty() || a.name.find_first_of(",\"\n") != std::string::npos)

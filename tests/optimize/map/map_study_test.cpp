@@ -97,6 +97,10 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
   d["scene_overrides"].push_back("/pulse/mode=max_force");
   CHECK(error_of(d).find("/pulse/mode: \"duration\"") != std::string::npos);
   d = doc;
+  d["axes"][0]["magnitude"] = 0.3;  // only a direction axis has a kick size
+  CHECK(error_of(d).find("s.json: /axes/0/magnitude: no \"magnitude\" on a \"duty_cycle\" axis") ==
+        0);
+  d = doc;
   d["axes"] = json::array();
   CHECK(error_of(d).find("s.json: /axes: an array of one or two axes") == 0);
 }
