@@ -168,3 +168,23 @@ TEST_CASE("derived and pointer axes change the cell scene as documented", "[map]
   // Cells differing only in a pointer axis have their own stride map.
   CHECK(m::stability_owner(st, 3) == 2);  // row 1, column 1 -> row 1, column 0
 }
+
+TEST_CASE("row seeding shares a row's disturbances, cell seeding draws per cell", "[map]") {
+  nlohmann::json doc = pronk::test::tiny_map_document(3, 2, 5.0);
+  m::MapStudy st = m::parse_map_study(doc, "t.json", ".");
+  auto kick = [&](long cell, long t) {
+    const o::Scenario s = m::trial_scenario(st, m::cell_seed_key(st, cell), t);
+    return Eigen::Vector2d(s.position_offset.y(), s.tilt.x());
+  };
+  CHECK(kick(0, 0) == kick(2, 0));  // same row
+  CHECK(kick(0, 0) != kick(3, 0));  // next row
+  CHECK(kick(0, 0) != kick(0, 1));  // next trial
+  doc["trials"]["seeding"] = "cell";
+  st = m::parse_map_study(doc, "t.json", ".");
+  CHECK(kick(0, 0) != kick(2, 0));
+  CHECK(m::cell_seed_key(st, 4) == 4);
+  // Every draw depends on (seed, key, trial) only.
+  CHECK(kick(4, 1) == kick(4, 1));
+  const m::CellResult a = m::compute_cell(st, 4), b = m::compute_cell(st, 4);
+  CHECK(m::to_json(a).dump() == m::to_json(b).dump());
+}
