@@ -3,7 +3,7 @@
 # nothing when everything is already installed.
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
-      libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox)
+      libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
 missing=()

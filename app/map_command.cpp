@@ -1,0 +1,139 @@
+#include "app/map_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "optimize/map/map_runner.hpp"
+#include "optimize/map/map_study.hpp"
+#include "optimize/map/mpi_runner.hpp"
+#include "sim/io/input_error.hpp"
+
+namespace pronk::app {
+
+namespace {
+
+std::atomic<bool> g_map_stop{false};
+
+extern "C" void on_map_sigint(int) {
+  g_map_stop.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o,
+           const std::string& workers, bool quiet) {
+  if (o.status != "completed") {
+    std::fprintf(stderr, "pronk map: %s: %s\n", st.name.c_str(), o.reason.c_str());
+    return 1;
+  }
+  if (quiet) return 0;
+  std::printf("%s: %ld cells x %ld trials (%ld computed, %ld from the journal), %.1f s on %s\n",
+              st.name.c_str(), o.cells, st.trials.count, o.cells_computed, o.cells_replayed,
+              o.wall_time, workers.c_str());
+  const auto& d = o.summary["disagreement"];
+  if (st.models.size() > 1) {
+    std::printf("  disagreements %s vs %s: %ld trials; none up to %s = %s, first at %s\n",
+                std::string(scene::to_string(st.models[0])).c_str(),
+                std::string(scene::to_string(st.models[1])).c_str(),
+                o.summary["totals"]["disagreements"].get<long>(), st.axes[0].name.c_str(),
+                d["no_disagreement_up_to"].dump().c_str(), d["first_disagreement"].dump().c_str());
+  }
+  for (const auto& b : o.boundaries) {
+    std::printf("  boundary row %ld: %s %s = %.6g\n", b.row, b.status.c_str(),
+                st.axes[0].name.c_str(), b.boundary);
+  }
+  std::printf(
+      "  results: %s/ (cells.csv, trials.csv, boundary.csv, summary.json, fraction.svg, "
+      "disagreement.svg)\n",
+      o.out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* add_map_command(CLI::App& app, MapArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "map",
+      "Robustness map of a design (\"kind\": \"map\" study): seeded disturbance trials per cell "
+      "of\n"
+      "a 1-D or 2-D grid, two models compared, the stability boundary bisected per row.\n"
+      "Under `mpirun -np N pronk map ...` the cells are spread over the ranks.");
+  cmd->add_option("study", args.study_path, "Map study file (JSON)")->required();
+  cmd->add_option("--threads", args.threads, "Worker threads (default: all cores; MPI: 1 per rank)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_flag("--resume", args.resume, "Continue from the journal in the output directory");
+  cmd->add_option("--out", args.out_dir, "Output directory (default: the study's, results/<name>)");
+  cmd->add_option("--set", args.overrides,
+                  "Override a study value: --set /json/pointer=value (repeatable), e.g. "
+                  "--set /trials/count=4")
+      ->type_name("/PTR=VALUE");
+  cmd->add_flag("--quiet,-q", args.quiet, "No progress line, no summary");
+  return cmd;
+}
+
+int run_map_command(const MapArgs& args) {
+  namespace m = optimize::map;
+  m::MapRunOptions opt;
+  opt.resume = args.resume;
+  opt.out_dir = args.out_dir;
+  opt.stop_flag = &g_map_stop;
+  g_map_stop.store(false);
+#ifdef PRONK_WITH_MPI
+  if (m::mpi_launched()) {
+    m::MpiSession session;
+    std::unique_ptr<m::MapStudy> st;
+    try {
+      st = std::make_unique<m::MapStudy>(m::load_map_study(args.study_path, args.overrides));
+    } catch (const io::InputError& e) {
+      // Every rank reads the same file and fails the same way; rank 0 tells.
+      if (session.rank() == 0) std::cerr << "pronk: error: " << e.what() << "\n";
+      return 2;
+    }
+    if (session.rank() != 0) {
+      m::mpi_serve(*st);
+      return 0;
+    }
+    m::MpiRunner runner(session);
+    opt.runner = &runner;
+    opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+    int rc = 0;
+    try {
+      std::signal(SIGINT, on_map_sigint);
+      const m::MapOutcome o = m::run_map(*st, opt);
+      std::signal(SIGINT, SIG_DFL);
+      rc = report(*st, o, runner.describe(), args.quiet);
+    } catch (const io::InputError& e) {
+      std::cerr << "pronk: error: " << e.what() << "\n";
+      rc = 2;
+    } catch (const std::exception& e) {
+      std::cerr << "pronk: failed: " << e.what() << "\n";
+      rc = 1;
+    }
+    runner.release_workers();
+    return rc;
+  }
+#else
+  if (m::mpi_launched()) {
+    // N copies would each compute the whole map and write the same files.
+    std::cerr << "pronk: error: started by mpirun with several ranks, but this pronk was built "
+                 "without MPI (install libopenmpi-dev and rebuild)\n";
+    return 2;
+  }
+#endif
+  const m::MapStudy st = m::load_map_study(args.study_path, args.overrides);
+  const unsigned hw = std::thread::hardware_concurrency();
+  opt.threads = args.threads > 0 ? args.threads : (hw > 0 ? static_cast<int>(hw) : 1);
+  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+  std::signal(SIGINT, on_map_sigint);
+  const m::MapOutcome o = m::run_map(st, opt);
+  std::signal(SIGINT, SIG_DFL);
+  return report(st, o, std::to_string(opt.threads) + (opt.threads == 1 ? " thread" : " threads"),
+                args.quiet);
+}
+
+}  // namespace pronk::app

@@ -1,0 +1,318 @@
+#include "optimize/map/map_runner.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+
+#include "optimize/map/map_output.hpp"
+#include "optimize/thread_pool.hpp"
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+#include "sim/io/json_reader.hpp"
+#include "sim/io/plot.hpp"
+
+namespace pronk::optimize::map {
+
+using nlohmann::json;
+
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// What a journal holds: finished cells and bisected rows.
+struct JournalState {
+  std::map<long, CellResult> cells;
+  std::map<long, BoundaryResult> boundaries;
+};
+
+// Reads the journal of a map; a torn last line is dropped (and cut from the
+// file so appends start on a fresh line). A journal of another study is bad input.
+JournalState read_map_journal(const std::string& path, const MapStudy& st) {
+  JournalState js;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return js;
+  std::string line;
+  long lineno = 0;
+  std::uintmax_t good_bytes = 0, offset = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const bool complete = !in.eof();  // a last line without '\n' is torn
+    offset += line.size() + (complete ? 1 : 0);
+    json j;
+    try {
+      if (!complete) throw std::runtime_error("no end of line");
+      j = json::parse(line);
+    } catch (const std::exception& e) {
+      if (in.peek() == std::ifstream::traits_type::eof()) break;  // torn tail
+      throw io::InputError(path, "line " + std::to_string(lineno), "a journal record", e.what());
+    }
+    good_bytes = offset;
+    if (lineno == 1) {
+      if (j.value("type", "") != "pronk_map_journal" || j.value("hash", "") != st.hash) {
+        throw io::InputError(path, "/hash", "the journal of this map study (hash " + st.hash + ")",
+                             j.contains("hash") ? io::describe(j.at("hash")) : "no hash");
+      }
+      continue;
+    }
+    try {
+      const std::string task = j.at("task").get<std::string>();
+      if (task == "cell") {
+        CellResult c = cell_from_json(j);
+        if (c.index < 0 || c.index >= st.cells() || c.trials.size() != st.models.size())
+          throw std::runtime_error("cell record does not fit the study");
+        js.cells[c.index] = std::move(c);
+      } else if (task == "boundary") {
+        BoundaryResult b = boundary_from_json(j);
+        js.boundaries[b.row] = b;
+      }
+    } catch (const std::exception& e) {
+      throw io::InputError(path, "line " + std::to_string(lineno), "a map journal record",
+                           e.what());
+    }
+  }
+  in.close();
+  if (good_bytes < std::filesystem::file_size(path)) std::filesystem::resize_file(path, good_bytes);
+  return js;
+}
+
+// The map journal: one JSON line per finished task, flushed to the OS at once
+// (an interrupted or killed process loses nothing) and fsynced at most every
+// half second and at the end (a power cut loses at most that much, which
+// --resume recomputes). A cell is a few milliseconds of work, an fsync here
+// about 6 ms: syncing every record would cost more than the map.
+class MapJournal {
+ public:
+  MapJournal(const std::string& path, const json& header) : path_(path) {
+    std::error_code ec;
+    const bool empty =
+        !std::filesystem::exists(path, ec) || std::filesystem::file_size(path, ec) == 0;
+    file_ = std::fopen(path.c_str(), "a");
+    if (!file_)
+      throw std::runtime_error("cannot open journal " + path + ": " + std::strerror(errno));
+    if (empty) {
+      append(header);
+      sync();
+    }
+  }
+  ~MapJournal() {
+    try {
+      sync();
+    } catch (...) {
+    }
+    std::fclose(file_);
+  }
+  MapJournal(const MapJournal&) = delete;
+  MapJournal& operator=(const MapJournal&) = delete;
+  void append(const json& record) {
+    const std::string text = record.dump() + "\n";
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
+      throw std::runtime_error("cannot write journal " + path_ + ": " + std::strerror(errno));
+    if (now_s() - last_sync_ > 0.5) sync();
+  }
+  void sync() {
+    if (::fsync(fileno(file_)) != 0)
+      throw std::runtime_error("cannot sync journal " + path_ + ": " + std::strerror(errno));
+    last_sync_ = now_s();
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  double last_sync_ = 0.0;
+};
+
+}  // namespace
+
+json compute_task(const MapStudy& st, const MapTask& task) {
+  if (task.kind == 0) {
+    json j = to_json(compute_cell(st, task.index));
+    j["task"] = "cell";
+    return j;
+  }
+  BoundaryResult b;
+  b.row = task.index;
+  b.status = "bisected";
+  b.good = b.boundary = task.good;
+  b.bad = task.bad;
+  json j = to_json(bisect_row(st, b));
+  j["task"] = "boundary";
+  return j;
+}
+
+void LocalRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
+                      const std::function<void(const MapTask&, const json&)>& on_result,
+                      const std::atomic<bool>* stop) {
+  ThreadPool pool(threads_);
+  std::mutex mu;
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  pool.parallel_for(static_cast<long>(tasks.size()), [&](long i) {
+    if ((stop && stop->load()) || failed.load()) return;
+    try {
+      const json r = compute_task(st, tasks[static_cast<size_t>(i)]);
+      std::lock_guard<std::mutex> lock(mu);
+      on_result(tasks[static_cast<size_t>(i)], r);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mu);
+      if (!error) error = std::current_exception();
+      failed.store(true);
+    }
+  });
+  if (error) std::rethrow_exception(error);
+}
+
+std::string LocalRunner::describe() const {
+  return std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads");
+}
+
+std::string MapRunOptions::validate() const {
+  if (threads < 1) return "threads = " + std::to_string(threads) + ": must be >= 1";
+  return "";
+}
+
+MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
+  const std::string bad = options.validate();
+  if (!bad.empty()) throw std::invalid_argument("MapRunOptions: " + bad);
+  const double t0 = now_s();
+  LocalRunner local(options.threads);
+  TaskRunner& runner = options.runner ? *options.runner : local;
+  MapOutcome out;
+  out.out_dir = options.out_dir.empty() ? st.output_dir : options.out_dir;
+  out.cells = st.cells();
+  io::make_directories(out.out_dir);
+  const std::string journal_path = out.out_dir + "/journal.jsonl";
+  JournalState js;
+  if (options.resume) {
+    js = read_map_journal(journal_path, st);
+  } else {
+    std::error_code ec;
+    std::filesystem::remove(journal_path, ec);
+  }
+  MapJournal journal(journal_path,
+                     json{{"type", "pronk_map_journal"}, {"name", st.name}, {"hash", st.hash}});
+
+  // Phase 1: the cells not in the journal.
+  std::vector<CellResult> cells(static_cast<size_t>(st.cells()));
+  std::vector<bool> have(cells.size(), false);
+  std::vector<MapTask> tasks;
+  for (long i = 0; i < st.cells(); ++i) {
+    auto it = js.cells.find(i);
+    if (it != js.cells.end()) {
+      cells[static_cast<size_t>(i)] = std::move(it->second);
+      have[static_cast<size_t>(i)] = true;
+      ++out.cells_replayed;
+    } else {
+      tasks.push_back({0, i, 0.0, 0.0});
+    }
+  }
+  double last_print = 0.0;
+  long done = out.cells_replayed;
+  auto progress = [&](const char* what, long n, long total) {
+    if (!options.progress) return;
+    const double t = now_s();
+    if (t - last_print < 0.2 && n < total) return;
+    last_print = t;
+    std::fprintf(stderr, "\rmap %s: %s %ld/%ld (%.0f s)", st.name.c_str(), what, n, total, t - t0);
+    if (n >= total) std::fprintf(stderr, "\n");
+  };
+  const double t_cells = now_s();
+  runner.run(
+      st, tasks,
+      [&](const MapTask& task, const json& r) {
+        journal.append(r);
+        cells[static_cast<size_t>(task.index)] = cell_from_json(r);
+        have[static_cast<size_t>(task.index)] = true;
+        ++out.cells_computed;
+        progress("cells", ++done, st.cells());
+      },
+      options.stop_flag);
+  for (bool h : have) {
+    if (!h) {
+      out.status = "stopped";
+      out.reason = "interrupted after " + std::to_string(done) + " of " +
+                   std::to_string(st.cells()) + " cells (journal kept; --resume continues)";
+      out.wall_time = now_s() - t0;
+      return out;
+    }
+  }
+  out.cells_time = now_s() - t_cells;
+  out.summaries = summarize(st, cells);
+
+  // Phase 2: the boundary of every row, bisected where a good cell is followed by a bad one.
+  out.boundaries.resize(static_cast<size_t>(st.rows()));
+  std::vector<bool> have_b(out.boundaries.size(), false);
+  tasks.clear();
+  for (long r = 0; r < st.rows(); ++r) {
+    const BoundaryResult b = initial_bracket(st, out.summaries, r);
+    auto it = js.boundaries.find(r);
+    if (b.status != "bisected") {
+      out.boundaries[static_cast<size_t>(r)] = b;
+      have_b[static_cast<size_t>(r)] = true;
+    } else if (it != js.boundaries.end()) {
+      out.boundaries[static_cast<size_t>(r)] = it->second;
+      have_b[static_cast<size_t>(r)] = true;
+      ++out.bisections_replayed;
+    } else {
+      tasks.push_back({1, r, b.good, b.bad});
+    }
+  }
+  long bdone = 0;
+  const double t_bisect = now_s();
+  runner.run(
+      st, tasks,
+      [&](const MapTask& task, const json& r) {
+        journal.append(r);
+        out.boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
+        have_b[static_cast<size_t>(task.index)] = true;
+        ++out.rows_bisected;
+        progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
+      },
+      options.stop_flag);
+  out.bisection_time = now_s() - t_bisect;
+  // The lower edge comes from the cells (not journaled).
+  for (long r = 0; r < st.rows(); ++r)
+    out.boundaries[static_cast<size_t>(r)].first_good =
+        initial_bracket(st, out.summaries, r).first_good;
+  for (bool h : have_b) {
+    if (!h) {
+      out.status = "stopped";
+      out.reason = "interrupted during the boundary bisection (journal kept; --resume continues)";
+      out.wall_time = now_s() - t0;
+      return out;
+    }
+  }
+
+  journal.sync();
+
+  // Results.
+  const double t_out = now_s();
+  out.summary = summary_json(st, out.summaries, out.boundaries);
+  out.simulations = out.summary["totals"]["simulations"].get<long>();
+  io::write_file_atomic(out.out_dir + "/cells.csv", cells_csv(st, out.summaries));
+  io::write_file_atomic(out.out_dir + "/trials.csv", trials_csv(st, cells));
+  io::write_file_atomic(out.out_dir + "/boundary.csv",
+                        boundary_csv(st, out.summaries, out.boundaries));
+  io::write_file_atomic(out.out_dir + "/summary.json", out.summary.dump(2) + "\n");
+  for (const char* what : {"fraction", "disagreement"}) {
+    const std::string script = heatmap_script(st, out.summaries, out.boundaries, what);
+    if (options.figures)
+      io::render_figure(out.out_dir, what, script);
+    else
+      io::write_file_atomic(out.out_dir + "/" + what + ".gp", script);
+  }
+  out.output_time = now_s() - t_out;
+  out.wall_time = now_s() - t0;
+  return out;
+}
+
+}  // namespace pronk::optimize::map

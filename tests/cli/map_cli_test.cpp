@@ -1,0 +1,123 @@
+// End-to-end tests of `pronk map`: bad input (exit 2, one line naming file and
+// pointer), a tiny map written with every output file, and — when MPI is
+// built — `mpirun -np 2 pronk map` giving the threaded run's bytes.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tests/optimize/map/map_test_support.hpp"
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Dir {
+  std::string path;
+  Dir() {
+    char t[] = "/tmp/pronk_map_cli_XXXXXX";
+    REQUIRE(::mkdtemp(t) != nullptr);
+    path = t;
+  }
+  ~Dir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int run(const std::string& command, const std::string& dir, std::string* err = nullptr) {
+  const std::string e = dir + "/stderr.txt";
+  const int rc = std::system((command + " > " + dir + "/stdout.txt 2> " + e).c_str());
+  if (err) *err = slurp(e);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+std::string pronk_exe() { return std::string(PRONK_EXE); }
+
+}  // namespace
+
+TEST_CASE("map rejects bad input with exit 2 naming file and pointer", "[cli][map]") {
+  Dir d;
+  std::string err;
+  CHECK(run(pronk_exe() + " map " + d.path + "/missing.json", d.path, &err) == 2);
+  CHECK(err.find("missing.json") != std::string::npos);
+  json doc = pronk::test::tiny_map_document();
+  doc["axes"][0]["scael"] = "log";
+  { std::ofstream(d.path + "/bad.json") << doc.dump(); }
+  CHECK(run(pronk_exe() + " map " + d.path + "/bad.json --out " + d.path + "/o", d.path, &err) ==
+        2);
+  CHECK(err.rfind("pronk: error: " + d.path + "/bad.json: /axes/0/scael: expected a known key",
+                  0) == 0);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
+  { std::ofstream(d.path + "/good.json") << pronk::test::tiny_map_document().dump(); }
+  CHECK(run(pronk_exe() + " map " + d.path + "/good.json --set /trials/count=0", d.path, &err) ==
+        2);
+  CHECK(err.find("/trials/count: expected") != std::string::npos);
+  CHECK(run(pronk_exe() + " map --threads 0 " + d.path + "/good.json", d.path) == 2);
+  CHECK(run(pronk_exe() + " map " + d.path + "/good.json --bogus", d.path) == 2);
+}
+
+TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli][map]") {
+  Dir d;
+  { std::ofstream(d.path + "/s.json") << pronk::test::tiny_map_document(3, 2, 5.0).dump(); }
+  const std::string out = d.path + "/out";
+  REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --threads 2 --out " + out, d.path) == 0);
+  for (const char* f : {"cells.csv", "trials.csv", "boundary.csv", "summary.json", "fraction.gp",
+                        "disagreement.gp", "journal.jsonl"})
+    CHECK(fs::exists(out + "/" + f));
+  const json summary = json::parse(slurp(out + "/summary.json"));
+  CHECK(summary["type"] == "pronk_map");
+  CHECK(summary["totals"]["cells"] == 6);
+  CHECK(summary["boundary"]["rows"].size() == 2);
+  const std::string cells = slurp(out + "/cells.csv");
+  REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --resume --out " + out, d.path) == 0);
+  CHECK(slurp(d.path + "/stdout.txt").find("(0 computed, 6 from the journal)") !=
+        std::string::npos);
+  CHECK(slurp(out + "/cells.csv") == cells);
+}
+
+#ifdef PRONK_MPIEXEC
+TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][mpi]") {
+  Dir d;
+  { std::ofstream(d.path + "/s.json") << pronk::test::tiny_map_document(4, 2, 5.0).dump(); }
+  REQUIRE(
+      run(pronk_exe() + " map " + d.path + "/s.json -q --threads 2 --out " + d.path + "/threads",
+          d.path) == 0);
+  std::string err;
+  const int rc = run(std::string(PRONK_MPIEXEC) + " --allow-run-as-root --oversubscribe -np 2 " +
+                         pronk_exe() + " map " + d.path + "/s.json --out " + d.path + "/mpi",
+                     d.path, &err);
+  INFO(err);
+  REQUIRE(rc == 0);
+  CHECK(slurp(d.path + "/stdout.txt").find("on 2 MPI ranks") != std::string::npos);
+  for (const char* f : {"cells.csv", "trials.csv", "boundary.csv", "summary.json", "fraction.gp",
+                        "disagreement.gp"}) {
+    INFO(f);
+    CHECK(slurp(d.path + "/threads/" + f) == slurp(d.path + "/mpi/" + f));
+  }
+  // Bad input under MPI: rank 0 reports it once, every rank exits.
+  CHECK(run(std::string(PRONK_MPIEXEC) + " --allow-run-as-root --oversubscribe -np 2 " +
+                pronk_exe() + " map " + d.path + "/s.json --set /trials/cuont=1",
+            d.path, &err) == 2);
+  // (mpirun adds its own note about the non-zero exit code.)
+  const size_t first = err.find("pronk: error: ");
+  CHECK(first != std::string::npos);
+  CHECK(err.find("/trials/cuont: expected a known key") != std::string::npos);
+  CHECK(err.find("pronk: error: ", first + 1) == std::string::npos);
+}
+#endif

@@ -1,0 +1,106 @@
+// Map study files: axes (lists, linear and log ranges, derived axes), the
+// duty-cycle definition, and bad input naming file, JSON Pointer, expected, found.
+#include "optimize/map/map_study.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "sim/io/input_error.hpp"
+#include "tests/optimize/map/map_test_support.hpp"
+
+using nlohmann::json;
+using pronk::io::InputError;
+namespace m = pronk::optimize::map;
+
+namespace {
+
+// The error a document raises (file, pointer, expected), or "" if none.
+std::string error_of(const json& doc) {
+  try {
+    m::parse_map_study(doc, "s.json", ".");
+  } catch (const InputError& e) {
+    return e.file() + ": " + e.pointer() + ": " + e.expected() + " | " + e.found();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("map axes: ranges, log spacing, lists and derived kinds", "[map][input]") {
+  json doc = pronk::test::tiny_map_document(5);
+  m::MapStudy st = m::parse_map_study(doc, "s.json", ".");
+  REQUIRE(st.axes.size() == 2);
+  CHECK(st.axes[0].values == std::vector<double>{0.2, 0.25, 0.3, 0.35, 0.4});
+  CHECK(st.axes[1].kind == m::AxisKind::kTilt);
+  CHECK(st.cells() == 10);
+  CHECK(st.models.size() == 2);
+  CHECK(st.primary_model() == pronk::scene::ModelKind::kPulse);
+  CHECK(st.resolution == Approx(0.01));
+  // Default resolution: 1/8 of the spacing.
+  doc.erase("boundary");
+  CHECK(m::parse_map_study(doc, "s.json", ".").resolution == Approx(0.05 / 8));
+  doc["axes"][0] = {{"kind", "pointer"},
+                    {"pointer", "/controller/bank/kp"},
+                    {"range", {0.01, 1}},
+                    {"count", 3},
+                    {"scale", "log"}};
+  st = m::parse_map_study(doc, "s.json", ".");
+  CHECK(st.axes[0].values == std::vector<double>{0.01, 0.1, 1});
+  CHECK(st.axes[0].log_scale);
+}
+
+TEST_CASE("the duty axis sets T = duty x (T + 2 sqrt(2h/g))", "[map]") {
+  const m::MapStudy st = pronk::test::tiny_map();
+  const double flight = 2.0 * std::sqrt(2.0 * 0.2 / 9.81);
+  for (double d : {0.1, 0.3, 0.5}) {
+    const double T = m::pulse_duration_for_duty(st.base_scene, d);
+    CHECK(T / (T + flight) == Approx(d).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("bad map studies name the file, the pointer, what was expected and found",
+          "[map][input]") {
+  json doc = pronk::test::tiny_map_document();
+  CHECK(error_of(doc).empty());
+  json d = doc;
+  d["kind"] = "study";
+  CHECK(error_of(d).find("s.json: /kind: \"map\"") == 0);
+  d = doc;
+  d["trials"]["cuont"] = 3;
+  CHECK(error_of(d).find("s.json: /trials/cuont: a known key") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "duty_cycle"}, {"values", {0.2, 0.3, 0.3}}};
+  CHECK(error_of(d).find("s.json: /axes/0/values/2: strictly increasing") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "duty_cycle"}, {"values", {0.2, 0.99}}};
+  CHECK(error_of(d).find("s.json: /axes/0/values") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "pointer"}, {"pointer", "/controller/nothing"}, {"values", {1, 2}}};
+  CHECK(error_of(d).find("s.json: /axes/0/pointer: a pointer to a number") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "pointer"}, {"pointer", "/body/mass"}, {"values", {1, -2}}};
+  CHECK(error_of(d).find("s.json: /axes/0/values/1:") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "pointer"}, {"pointer", "/body/mass"}, {"values", {-1, 2}}};
+  CHECK(error_of(d).find("s.json: /axes/0/values/0: a value that makes a valid scene") == 0);
+  d = doc;
+  d["axes"][0] = {{"kind", "duty_cycle"}, {"range", {0.1, 0.5}}};
+  d["axes"][0]["values"] = {0.1};
+  CHECK(error_of(d).find("s.json: /axes/0/values: exactly one of") == 0);
+  d = doc;
+  d["axes"][1] = {{"kind", "disturbance_direction_deg"}, {"values", {0, 90}}};
+  CHECK(error_of(d).find("s.json: /axes/1/magnitude: a kick size > 0") == 0);
+  d = doc;
+  d["models"] = {"pulse", "pseudo_rigid"};
+  CHECK(error_of(d).find("s.json: /models/1: \"impulse\" or \"pulse\"") == 0);
+  d = doc;
+  d["scene_overrides"].push_back("/pulse/mode=max_force");
+  CHECK(error_of(d).find("/pulse/mode: \"duration\"") != std::string::npos);
+  d = doc;
+  d["axes"][0]["magnitude"] = 0.3;  // only a direction axis has a kick size
+  CHECK(error_of(d).find("s.json: /axes/0/magnitude: no \"magnitude\" on a \"duty_cycle\" axis") ==
+        0);
+  d = doc;
+  d["axes"] = json::array();
+  CHECK(error_of(d).find("s.json: /axes: an array of one or two axes") == 0);
+}
