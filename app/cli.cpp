@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
 #include "sim/io/input_error.hpp"
@@ -23,6 +24,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* optimize = add_optimize_command(app, optimize_args);
   ReproduceArgs reproduce_args;
   CLI::App* reproduce = add_reproduce_command(app, reproduce_args);
+  BenchArgs bench_args;
+  CLI::App* bench = add_bench_command(app, bench_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -39,6 +42,7 @@ int run_cli(int argc, const char* const* argv) {
     if (simulate->parsed()) return run_simulate(simulate_args);
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
+    if (bench->parsed()) return run_bench(bench_args);
   } catch (const io::InputError& e) {
     std::cerr << "pronk: error: " << e.what() << "\n";
     return 2;
