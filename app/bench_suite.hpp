@@ -94,7 +94,8 @@ std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points);
 /// The fidelity ladder on the legged hopper for a few pulse durations.
 std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c);
 /// The quad spring hopper drop in the pseudo-rigid model (the scene the MuJoCo peer
-/// mirrors): per tolerance cost, energy-balance drift, apex heights. JSON records.
+/// mirrors): per tolerance cost, energy-balance drift (energy_error_rel: max drift / drop
+/// energy m g 0.15 m), apex heights. JSON records.
 nlohmann::json quad_hopper_drop(const BenchConfig& c);
 /// The quad hopper drop as a mechanism document (SPEC 8 format), `t_end` simulated [s].
 nlohmann::json quad_hopper_mechanism(double t_end);
