@@ -25,10 +25,11 @@ def g(x, digits=3):
         return "yes" if x else "no"
     if x == 0:
         return "0"
-    a = abs(x)
-    if 1e-3 <= a < 1e5:
-        return f"{x:.{digits}g}"
-    return f"{x:.{max(digits - 1, 1)}e}".replace("e-0", "e-").replace("e+0", "e")
+    t = f"{x:.{digits}g}"
+    if "e" in t:
+        mant, exp = t.split("e")
+        t = mant + "e" + str(int(exp))
+    return t
 
 
 def ms(seconds):
@@ -52,7 +53,7 @@ def section(d, figdir):
     L.append(BEGIN)
     L.append("")
     L.append(
-        f"`pronk bench` (default settings: median of {d['repeat']} repeats per point) on "
+        f"`pronk bench` (default settings: median of {d['repeat']} runs per point) on "
         f"**{d['machine']}**, {d['date_utc']}, commit `{d['commit']}`; the whole run took "
         f"{d['total_wall_s']:.0f} s. Costs are the CPU time of the running thread (the build "
         "machine is shared, so wall times vary with the other jobs; both are in `bench.json`). "
