@@ -173,10 +173,12 @@ def section(d, figdir):
              "impulse model; stability from the stride map's multipliers):")
     L.append("")
     rows = []
+    unavailable = set()
     for p in d["fidelity_ladder"]:
         if not p["available"]:
-            rows.append([p["model"], g(p["pulse_duration"]), "not available: " + p["note"]] +
-                        ["–"] * 6)
+            if p["model"] not in unavailable:  # one row per missing rung, not per pulse
+                unavailable.add(p["model"])
+                rows.append([p["model"], "all", "not available: " + p["note"]] + ["–"] * 6)
             continue
         rows.append([p["model"], g(p["pulse_duration"]) if p["pulse_duration"] else "–", p["status"],
                      ms(p["cost_per_sim_s"]), g(p["mean_duty"]), g(p["mean_apex_m"]),
