@@ -158,7 +158,7 @@ std::string loglog_script(const std::string& name, const std::string& title,
     for (const auto& [x, y] : se.xy) s += fmt(x) + " " + fmt(y) + "\n";
     s += "EOD\n";
     plot += std::string(i ? ", " : "") + "$d" + std::to_string(i) +
-            " using 1:2 with linespoints title '" + se.title + "'";
+            " using 1:2 with linespoints title '" + se.title + "' noenhanced";
     ++i;
   }
   if (i == 0) return "";

@@ -32,4 +32,4 @@ $d2 << EOD
 0.0025 1.72726e-12
 0.00125 6.37391e-14
 EOD
-plot $d0 using 1:2 with linespoints title 'euler', $d1 using 1:2 with linespoints title 'rk2', $d2 using 1:2 with linespoints title 'rk4'
+plot $d0 using 1:2 with linespoints title 'euler' noenhanced, $d1 using 1:2 with linespoints title 'rk2' noenhanced, $d2 using 1:2 with linespoints title 'rk4' noenhanced

@@ -42,4 +42,4 @@ $d3 << EOD
 0.000785853 1.72726e-12
 0.00115449 6.37391e-14
 EOD
-plot $d0 using 1:2 with linespoints title 'dopri5', $d1 using 1:2 with linespoints title 'euler', $d2 using 1:2 with linespoints title 'rk2', $d3 using 1:2 with linespoints title 'rk4'
+plot $d0 using 1:2 with linespoints title 'dopri5' noenhanced, $d1 using 1:2 with linespoints title 'euler' noenhanced, $d2 using 1:2 with linespoints title 'rk2' noenhanced, $d3 using 1:2 with linespoints title 'rk4' noenhanced

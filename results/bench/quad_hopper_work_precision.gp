@@ -36,4 +36,4 @@ $d4 << EOD
 0.952752 0.0341786
 1.50727 0.0019411
 EOD
-plot $d0 using 1:2 with linespoints title 'MuJoCo Euler', $d1 using 1:2 with linespoints title 'MuJoCo RK4', $d2 using 1:2 with linespoints title 'MuJoCo implicit', $d3 using 1:2 with linespoints title 'pronk RODAS4 (body norm)', $d4 using 1:2 with linespoints title 'pronk RODAS4 (state norm)'
+plot $d0 using 1:2 with linespoints title 'MuJoCo Euler' noenhanced, $d1 using 1:2 with linespoints title 'MuJoCo RK4' noenhanced, $d2 using 1:2 with linespoints title 'MuJoCo implicit' noenhanced, $d3 using 1:2 with linespoints title 'pronk RODAS4 (body norm)' noenhanced, $d4 using 1:2 with linespoints title 'pronk RODAS4 (state norm)' noenhanced

@@ -36,4 +36,4 @@ $d3 << EOD
 1e+07 0.772605
 1e+08 1.32844
 EOD
-plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)', $d1 using 1:2 with linespoints title 'dopri5 (state norm)', $d2 using 1:2 with linespoints title 'rodas4 (body norm)', $d3 using 1:2 with linespoints title 'rodas4 (state norm)'
+plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d1 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced

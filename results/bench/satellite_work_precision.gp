@@ -63,4 +63,4 @@ $d6 << EOD
 0.256557 2.27064e-06
 0.374774 1.9502e-06
 EOD
-plot $d0 using 1:2 with linespoints title 'dopri5 (state norm)', $d1 using 1:2 with linespoints title 'rk4 (state norm)', $d2 using 1:2 with linespoints title 'rodas4 (body norm)', $d3 using 1:2 with linespoints title 'rodas4 (state norm)', $d4 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)', $d5 using 1:2 with linespoints title 'CVODE BDF (dense_dq)', $d6 using 1:2 with linespoints title 'CVODE BDF (sparse_klu_analytic)'
+plot $d0 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d1 using 1:2 with linespoints title 'rk4 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced, $d4 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d5 using 1:2 with linespoints title 'CVODE BDF (dense_dq)' noenhanced, $d6 using 1:2 with linespoints title 'CVODE BDF (sparse_klu_analytic)' noenhanced
