@@ -348,7 +348,8 @@ std::string machine() {
 }
 
 void progress(const BenchArgs& a, const std::string& what) {
-  if (!a.quiet) std::fprintf(stderr, "bench: %s\n", what.c_str());
+  // One line per stage on a terminal (SPEC 8: progress off when not a TTY or --quiet).
+  if (!a.quiet && isatty(STDERR_FILENO)) std::fprintf(stderr, "bench: %s\n", what.c_str());
 }
 
 }  // namespace
