@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_command.hpp"
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
@@ -26,6 +27,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* reproduce = add_reproduce_command(app, reproduce_args);
   MapArgs map_args;
   CLI::App* map = add_map_command(app, map_args);
+  BenchArgs bench_args;
+  CLI::App* bench = add_bench_command(app, bench_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -43,6 +46,7 @@ int run_cli(int argc, const char* const* argv) {
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
     if (map->parsed()) return run_map_command(map_args);
+    if (bench->parsed()) return run_bench(bench_args);
   } catch (const io::InputError& e) {
     std::cerr << "pronk: error: " << e.what() << "\n";
     return 2;

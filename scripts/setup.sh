@@ -6,6 +6,8 @@ pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-d
       libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
+# The optional peers of `pronk bench` (SUNDIALS CVODE, MuJoCo); CMake builds them when found.
+if [[ "${PRONK_WITH_PEERS:-0}" == 1 ]]; then pkgs+=(libsundials-dev libmujoco-dev); fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,612 @@
+#include "app/bench_suite.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <string>
+
+#include "sim/io/mechanism_loader.hpp"
+#include "sim/io/scene_loader.hpp"
+#include "sim/pseudorigid/simulator.hpp"
+#include "sim/pseudorigid/system.hpp"
+#include "sim/reduced/simulator.hpp"
+#include "sim/reduced/stride_map.hpp"
+// The satellite scene is shared by the tests, bench_pseudorigid and this bench.
+#include "tests/pseudorigid/scenes.hpp"
+
+namespace pronk::app::bench {
+
+namespace pr = pronk::pseudorigid;
+using ode::Method;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+namespace {
+
+/// CPU time of the calling thread [s]: robust against other jobs on a shared machine.
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void set_cost(WorkPoint& p, const ode::SolverCounters& c) {
+  p.steps = c.steps_accepted;
+  p.rejected = c.steps_rejected;
+  p.rhs = c.rhs_evaluations;
+  p.jacobians = c.jacobian_evaluations;
+  p.lu = c.lu_factorizations;
+}
+
+// ---------------------------------------------------------------- satellite
+
+constexpr double kSatelliteEnd = 20.0;  // [s], SPEC case 10 / issue 3
+
+struct SatelliteRun {
+  pr::RunSummary summary;
+  double wall = 0.0;  // median [s]
+  double cpu = 0.0;   // median [s]
+};
+
+pr::Mechanism satellite(double k, Method method, double tol, double h, pr::ErrorNorm norm) {
+  pr::Mechanism m = pr::test_scenes::satellite(k, kSatelliteEnd);
+  m.simulation.solver.method = method;
+  m.simulation.solver.rtol = m.simulation.solver.atol = tol > 0 ? tol : 1e-6;
+  if (h > 0) m.simulation.solver.h_fixed = h;
+  m.simulation.error_norm = norm;
+  return m;
+}
+
+SatelliteRun run_satellite(const pr::Mechanism& m, int repeat) {
+  SatelliteRun r;
+  std::vector<double> walls, cpus;
+  for (int i = 0; i < repeat; ++i) {
+    const double c0 = thread_cpu();
+    r.summary = pr::simulate(m);
+    cpus.push_back(thread_cpu() - c0);
+    walls.push_back(r.summary.wall_time);
+    // A diverged explicit run is measured once: its cost is not the point.
+    if (r.summary.status != pr::RunStatus::kCompleted) break;
+  }
+  r.wall = median(walls);
+  r.cpu = median(cpus);
+  return r;
+}
+
+/// World angular velocity series of the satellite run [rad/s].
+std::vector<Eigen::Vector3d> omega_series(const pr::Mechanism& m, const pr::RunSummary& r) {
+  const pr::MechanismSystem sys(m);
+  std::vector<Eigen::Vector3d> w;
+  w.reserve(r.y.size());
+  for (const auto& y : r.y) w.push_back(sys.body_omega(0, y));
+  return w;
+}
+
+/// The satellite point with its errors against the analytic solution and `ref`.
+WorkPoint satellite_point(const std::string& problem, const pr::Mechanism& m,
+                          const std::string& variant, double k, double tol, double h,
+                          const SatelliteRun& run, const pr::RunSummary* ref,
+                          const std::vector<Eigen::Vector3d>* ref_omega) {
+  WorkPoint p;
+  p.problem = problem;
+  p.solver = std::string(ode::to_string(m.simulation.solver.method));
+  p.variant = variant;
+  p.stiffness = k;
+  p.tol = tol;
+  p.h = h;
+  p.t_end = m.simulation.t_end;
+  p.status = std::string(pr::to_string(run.summary.status));
+  p.wall_s = run.wall;
+  p.cpu_s = run.cpu;
+  set_cost(p, run.summary.counters);
+  if (run.summary.status != pr::RunStatus::kCompleted) return p;
+  const auto w = omega_series(m, run.summary);
+  const double w0 = pr::test_scenes::satellite_omega(0.0).norm();
+  p.errors["omega_final"] =
+      (w.back() - pr::test_scenes::satellite_omega(run.summary.t.back())).norm() / w0;
+  if (ref != nullptr && ref->y.size() == run.summary.y.size()) {
+    double s = 0.0;
+    for (size_t i = 0; i < w.size(); ++i) s += ((w[i] - (*ref_omega)[i]) / w0).squaredNorm();
+    p.errors["omega_l2"] = std::sqrt(s / static_cast<double>(w.size()));
+    const Eigen::VectorXd d = run.summary.y.back() - ref->y.back();
+    p.errors["final_state"] = d.norm() / std::sqrt(static_cast<double>(d.size()));
+  }
+  return p;
+}
+
+/// Tight reference solution of the satellite at stiffness k (RODAS4, per-state norm).
+pr::RunSummary satellite_reference(double k) {
+  return pr::simulate(satellite(k, Method::kRodas4, 1e-11, 0.0, pr::ErrorNorm::kState));
+}
+
+// ---------------------------------------------------------------- hopper
+
+scene::Scene hopper_scene(const BenchConfig& c, double duration) {
+  scene::Scene s = io::load_scene(c.studies_dir + "/scenes/case3_legged_pulse.json");
+  s.simulation.duration = duration;
+  return s;
+}
+
+struct HopperRun {
+  reduced::RunResult result;
+  double wall = 0.0, cpu = 0.0;  // medians [s]
+};
+
+HopperRun run_hopper(const scene::Scene& s, int repeat) {
+  HopperRun r;
+  std::vector<double> walls, cpus;
+  for (int i = 0; i < repeat; ++i) {
+    const double c0 = thread_cpu();
+    r.result = reduced::simulate(s);
+    cpus.push_back(thread_cpu() - c0);
+    walls.push_back(r.result.cost.wall_time);
+    if (r.result.status != reduced::RunStatus::kCompleted) break;
+  }
+  r.wall = median(walls);
+  r.cpu = median(cpus);
+  return r;
+}
+
+WorkPoint hopper_point(const scene::Scene& s, double tol, double h, const HopperRun& run,
+                       const reduced::RunResult& ref) {
+  WorkPoint p;
+  p.problem = "hopper";
+  p.solver = std::string(ode::to_string(s.simulation.solver.method));
+  p.tol = tol;
+  p.h = h;
+  p.t_end = s.simulation.duration;
+  p.status = std::string(reduced::to_string(run.result.status));
+  p.wall_s = run.wall;
+  p.cpu_s = run.cpu;
+  set_cost(p, run.result.cost.solver);
+  if (run.result.status != reduced::RunStatus::kCompleted) return p;
+  p.errors["final_state"] = (run.result.final_position - ref.final_position).norm();
+  const size_t n = std::min(run.result.trajectory.size(), ref.trajectory.size());
+  if (n > 0) {
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      sum += (run.result.trajectory[i].position - ref.trajectory[i].position).squaredNorm();
+    }
+    p.errors["l2_series"] = std::sqrt(sum / static_cast<double>(n));
+  }
+  // Touchdown times by stride index; a different stride count is itself an error
+  // as large as the run (the stride sequence was not reproduced).
+  if (run.result.strides.size() == ref.strides.size()) {
+    double worst = 0.0;
+    for (size_t i = 0; i < ref.strides.size(); ++i) {
+      worst =
+          std::max(worst, std::abs(run.result.strides[i].t_touchdown - ref.strides[i].t_touchdown));
+    }
+    p.errors["touchdown_time"] = worst;
+  } else {
+    p.errors["touchdown_time"] = p.t_end;
+  }
+  return p;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- public groups
+
+std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c) {
+  const double k = 1e6;
+  const pr::Mechanism ref_m = satellite(k, Method::kRodas4, 1e-11, 0.0, pr::ErrorNorm::kState);
+  const pr::RunSummary ref = satellite_reference(k);
+  const auto ref_omega = omega_series(ref_m, ref);
+  std::vector<WorkPoint> out;
+  const std::vector<double> tols =
+      c.quick ? std::vector<double>{1e-3, 1e-5, 1e-7}
+              : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  for (double tol : tols) {
+    for (auto norm : {pr::ErrorNorm::kState, pr::ErrorNorm::kBody}) {
+      const pr::Mechanism m = satellite(k, Method::kRodas4, tol, 0.0, norm);
+      out.push_back(satellite_point("satellite", m, norm == pr::ErrorNorm::kBody ? "body" : "state",
+                                    k, tol, 0.0, run_satellite(m, c.repeat), &ref, &ref_omega));
+    }
+    // DOPRI5 is stability-limited here: its cost hardly depends on the tolerance.
+    if (!c.quick || tol <= 1e-5) {
+      const pr::Mechanism m = satellite(k, Method::kDopri5, tol, 0.0, pr::ErrorNorm::kState);
+      out.push_back(satellite_point("satellite", m, "state", k, tol, 0.0,
+                                    run_satellite(m, c.repeat), &ref, &ref_omega));
+    }
+  }
+  // Fixed-step explicit methods: RK4 is stable below h ~ 2.8 / omega_max (about
+  // 1e-3 s here); Euler and RK2 are unstable for undamped vibration at any step and
+  // must end with a divergence status (SPEC case 8), which is what they show.
+  const std::vector<double> hs =
+      c.quick ? std::vector<double>{1e-3, 5e-4} : std::vector<double>{1e-3, 5e-4, 2.5e-4};
+  for (Method method : {Method::kEuler, Method::kRk2, Method::kRk4}) {
+    for (double h : hs) {
+      const pr::Mechanism m = satellite(k, method, 0.0, h, pr::ErrorNorm::kState);
+      out.push_back(satellite_point("satellite", m, "state", k, 0.0, h, run_satellite(m, c.repeat),
+                                    &ref, &ref_omega));
+    }
+  }
+  return out;
+}
+
+std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c) {
+  std::vector<WorkPoint> out;
+  const std::vector<double> ks =
+      c.quick ? std::vector<double>{1e4, 1e8} : std::vector<double>{1e4, 1e5, 1e6, 1e7, 1e8};
+  const double tol = 1e-6;
+  for (double k : ks) {
+    for (auto norm : {pr::ErrorNorm::kState, pr::ErrorNorm::kBody}) {
+      const pr::Mechanism m = satellite(k, Method::kRodas4, tol, 0.0, norm);
+      out.push_back(satellite_point("satellite_stiffness", m,
+                                    norm == pr::ErrorNorm::kBody ? "body" : "state", k, tol, 0.0,
+                                    run_satellite(m, c.repeat), nullptr, nullptr));
+    }
+    // DOPRI5 resolves the internal vibration: its cost grows like sqrt(k).
+    if (!c.quick || k <= 1e6) {
+      const pr::Mechanism m = satellite(k, Method::kDopri5, tol, 0.0, pr::ErrorNorm::kState);
+      out.push_back(satellite_point("satellite_stiffness", m, "state", k, tol, 0.0,
+                                    run_satellite(m, c.quick ? 1 : c.repeat), nullptr, nullptr));
+    }
+  }
+  return out;
+}
+
+std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c) {
+  const double duration = c.quick ? 3.0 : 10.0;
+  scene::Scene ref_s = hopper_scene(c, duration);
+  ref_s.simulation.solver.method = Method::kDopri5;
+  ref_s.simulation.solver.rtol = ref_s.simulation.solver.atol = 1e-13;
+  const reduced::RunResult ref = reduced::simulate(ref_s);
+  std::vector<WorkPoint> out;
+  // The hopper's flights are nearly polynomial in time, so RK4 reaches the
+  // reference's accuracy (1e-12 m) already at 2 ms: its steps are 10x larger.
+  const std::vector<double> hs = c.quick
+                                     ? std::vector<double>{2e-3, 1e-3, 5e-4, 2.5e-4}
+                                     : std::vector<double>{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4};
+  for (Method method : {Method::kEuler, Method::kRk2, Method::kRk4}) {
+    for (double h0 : hs) {
+      const double h = method == Method::kRk4 ? 10 * h0 : h0;
+      scene::Scene s = ref_s;
+      s.simulation.solver.method = method;
+      s.simulation.solver.h_fixed = h;
+      out.push_back(hopper_point(s, 0.0, h, run_hopper(s, c.repeat), ref));
+    }
+  }
+  const std::vector<double> tols =
+      c.quick ? std::vector<double>{1e-3, 1e-5, 1e-7, 1e-9}
+              : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  for (double tol : tols) {
+    scene::Scene s = ref_s;
+    s.simulation.solver.rtol = s.simulation.solver.atol = tol;
+    out.push_back(hopper_point(s, tol, 0.0, run_hopper(s, c.repeat), ref));
+  }
+  // The stride map's periodic orbit (SPEC 5.1) per solver tolerance.
+  scene::Scene map_s = hopper_scene(c, duration);
+  map_s.simulation.solver.method = Method::kDopri5;
+  reduced::StabilityOptions ref_o;
+  ref_o.rtol = 1e-12;
+  map_s.simulation.solver.rtol = map_s.simulation.solver.atol = ref_o.rtol;
+  const reduced::StabilityResult map_ref = reduced::analyze_stability(map_s, ref_o);
+  const std::vector<double> map_tols =
+      c.quick ? std::vector<double>{1e-5, 1e-8} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10};
+  for (double tol : map_tols) {
+    reduced::StabilityOptions o;
+    o.rtol = tol;
+    map_s.simulation.solver.rtol = map_s.simulation.solver.atol = tol;
+    std::vector<double> walls, cpus;
+    reduced::StabilityResult r;
+    for (int i = 0; i < c.repeat; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const double c0 = thread_cpu();
+      r = reduced::analyze_stability(map_s, o);
+      cpus.push_back(thread_cpu() - c0);
+      walls.push_back(seconds_since(t0));
+    }
+    WorkPoint p;
+    p.problem = "hopper_stride_map";
+    p.solver = "dopri5";
+    p.variant = "steps = stride-map evaluations";
+    p.tol = tol;
+    p.status = r.ok ? "completed" : "failed: " + r.reason;
+    p.wall_s = median(walls);
+    p.cpu_s = median(cpus);
+    p.steps = r.map_evaluations;
+    if (r.ok && map_ref.ok) {
+      p.errors["fixed_point"] = (r.fixed_point - map_ref.fixed_point).cwiseAbs().maxCoeff();
+      p.errors["spectral_radius"] = std::abs(r.spectral_radius - map_ref.spectral_radius);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points) {
+  std::vector<OrderFit> out;
+  for (const char* solver : {"euler", "rk2", "rk4"}) {
+    // Least-squares slope of log(error) over log(h) on completed hopper runs whose
+    // error is above the reference's own accuracy (1e-11 m).
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (const auto& p : points) {
+      if (p.problem != "hopper" || p.solver != solver || p.status != "completed") continue;
+      auto it = p.errors.find("final_state");
+      if (it == p.errors.end() || it->second < 1e-11) continue;
+      const double x = std::log(p.h), y = std::log(it->second);
+      sx += x;
+      sy += y;
+      sxx += x * x;
+      sxy += x * y;
+      ++n;
+    }
+    if (n < 2) continue;
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    out.push_back({"hopper", solver, "final_state", slope, n});
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- fidelity ladder
+
+namespace {
+
+FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
+  FidelityPoint p;
+  p.model = std::string(scene::to_string(s.model));
+  p.pulse_duration = s.model == scene::ModelKind::kPulse ? s.pulse.duration : 0.0;
+  p.t_end = s.simulation.duration;
+  std::vector<double> walls, cpus;
+  reduced::RunResult r;
+  reduced::RunOptions opts;
+  opts.record_trajectory = false;
+  for (int i = 0; i < c.repeat; ++i) {
+    const double c0 = thread_cpu();
+    r = reduced::simulate(s, opts);
+    cpus.push_back(thread_cpu() - c0);
+    walls.push_back(r.cost.wall_time);
+  }
+  p.status = std::string(reduced::to_string(r.status));
+  p.wall_s = median(walls);
+  p.cpu_s = median(cpus);
+  p.cost_per_sim_s = p.cpu_s / std::max(r.t_end, 1e-9);
+  p.strides = static_cast<long>(r.strides.size());
+  double duty = 0, apex = 0;
+  int nd = 0, na = 0;
+  for (size_t i = 1; i < r.strides.size(); ++i) {
+    if (r.strides[i].duty_cycle > 0) {
+      duty += r.strides[i].duty_cycle;
+      ++nd;
+    }
+    if (r.strides[i].has_apex) {
+      apex += r.strides[i].apex_height;
+      ++na;
+    }
+  }
+  p.mean_duty = nd ? duty / nd : 0.0;
+  p.mean_apex = na ? apex / na : 0.0;
+  const reduced::StabilityResult st = reduced::analyze_stability(s);
+  p.spectral_radius = st.spectral_radius;
+  p.stable = st.ok && st.spectral_radius < 1.0;
+  if (!st.ok) p.note = "no periodic orbit: " + st.reason;
+  return p;
+}
+
+/// Apex heights of strides 2.. of a run (for the discrepancy against impulse).
+std::vector<double> apexes(const scene::Scene& s) {
+  reduced::RunOptions opts;
+  opts.record_trajectory = false;
+  const reduced::RunResult r = reduced::simulate(s, opts);
+  std::vector<double> a;
+  for (size_t i = 1; i < r.strides.size(); ++i) {
+    if (r.strides[i].has_apex) a.push_back(r.strides[i].apex_height);
+  }
+  return a;
+}
+
+}  // namespace
+
+std::vector<FidelityRung> fidelity_rungs() {
+  std::vector<FidelityRung> rungs;
+  rungs.push_back({"impulse", [](const scene::Scene& s, const BenchConfig& c) {
+                     scene::Scene si = s;
+                     si.model = scene::ModelKind::kImpulse;
+                     return reduced_rung(si, c);
+                   }});
+  rungs.push_back({"pulse", [](const scene::Scene& s, const BenchConfig& c) {
+                     scene::Scene sp = s;
+                     sp.model = scene::ModelKind::kPulse;
+                     return reduced_rung(sp, c);
+                   }});
+  // The pseudo-rigid rung: the robot scene in the full model is issue 4's work.
+  // When it lands, this lambda builds the mechanism from the same scene and
+  // fills the same record (cost per simulated second, apex heights, verdict).
+  rungs.push_back({"pseudo_rigid", [](const scene::Scene& s, const BenchConfig&) {
+                     FidelityPoint p;
+                     p.model = "pseudo_rigid";
+                     p.available = false;
+                     p.pulse_duration = s.pulse.duration;
+                     p.status = "not_available";
+                     p.note =
+                         "the robot scene in the pseudo-rigid model (issue 4) is not built yet";
+                     return p;
+                   }});
+  return rungs;
+}
+
+std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c) {
+  scene::Scene base = hopper_scene(c, c.quick ? 4.0 : 10.0);
+  const std::vector<double> pulses =
+      c.quick ? std::vector<double>{0.1} : std::vector<double>{0.05, 0.1, 0.2, 0.3};
+  std::vector<FidelityPoint> out;
+  const auto rungs = fidelity_rungs();
+  // The impulse model does not depend on the pulse duration: run it once.
+  scene::Scene si = base;
+  si.model = scene::ModelKind::kImpulse;
+  const FidelityPoint impulse = rungs[0].run(si, c);
+  const std::vector<double> impulse_apex = apexes(si);
+  const reduced::StabilityResult impulse_orbit = reduced::analyze_stability(si);
+  out.push_back(impulse);
+  for (double T : pulses) {
+    scene::Scene s = base;
+    s.pulse.duration = T;
+    for (size_t r = 1; r < rungs.size(); ++r) {
+      FidelityPoint p = rungs[r].run(s, c);
+      if (p.available && p.model == "pulse") {
+        scene::Scene sp = s;
+        sp.model = scene::ModelKind::kPulse;
+        const std::vector<double> a = apexes(sp);
+        const size_t n = std::min(a.size(), impulse_apex.size());
+        double sum = 0;
+        for (size_t i = 0; i < n; ++i) sum += (a[i] - impulse_apex[i]) * (a[i] - impulse_apex[i]);
+        p.apex_rms_vs_impulse = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+        const reduced::StabilityResult orbit = reduced::analyze_stability(sp);
+        if (orbit.ok && impulse_orbit.ok) {
+          p.fixed_point_vs_impulse =
+              (orbit.fixed_point - impulse_orbit.fixed_point).cwiseAbs().maxCoeff();
+        }
+      }
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- quad hopper drop
+
+nlohmann::json quad_hopper_mechanism(double t_end) {
+  // 1.5 kg body with the seed's inertia; four prismatic 100 N/m legs of rest
+  // length 0.25 m at the hips (+-0.14, +-0.115, -0.04) m; 10 g feet 0.15 m above the
+  // ground; no dissipation anywhere (ground, slides and legs are undamped springs).
+  using nlohmann::json;
+  const double hips[4][2] = {{0.14, 0.115}, {0.14, -0.115}, {-0.14, 0.115}, {-0.14, -0.115}};
+  const char* names[4] = {"fl", "fr", "rl", "rr"};
+  const double leg = 0.25, drop = 0.15, hip_z = -0.04;
+  json body = {{"name", "body"},
+               {"mass", 1.5},
+               {"inertia", {0.0074, 0.0106, 0.0164}},
+               {"com", {0.0, 0.0, drop + leg - hip_z}},
+               {"internal_stiffness", 1e5},
+               {"ghost_points", json::array()}};
+  json masses = json::array(), connections = json::array(), surfaces = json::array();
+  json ground_nodes = json::array();
+  for (int i = 0; i < 4; ++i) {
+    const std::string n = names[i];
+    const json hip = {hips[i][0], hips[i][1], hip_z};
+    body["ghost_points"].push_back({{"name", "hip_" + n}, {"position", hip}});
+    masses.push_back(
+        {{"name", "foot_" + n}, {"mass", 0.01}, {"position", {hips[i][0], hips[i][1], drop}}});
+    connections.push_back({{"name", "leg_" + n},
+                           {"a", "foot_" + n},
+                           {"b", "hip_" + n},
+                           {"class", "leg"},
+                           {"stiffness", 100.0},
+                           {"rest_length", leg}});
+    surfaces.push_back({{"name", "slide_" + n},
+                        {"type", "line"},
+                        {"body", "body"},
+                        {"point", hip},
+                        {"direction", {0, 0, 1}},
+                        {"nodes", {"foot_" + n}},
+                        {"stiffness", 1e5}});
+    ground_nodes.push_back("foot_" + n);
+  }
+  surfaces.push_back({{"name", "ground"},
+                      {"type", "plane"},
+                      {"point", {0, 0, 0}},
+                      {"direction", {0, 0, 1}},
+                      {"nodes", ground_nodes},
+                      {"stiffness", 1e5}});
+  return {{"kind", "mechanism"},
+          {"name", "quad_hopper_drop"},
+          {"gravity", {0, 0, -9.81}},
+          {"bodies", {body}},
+          {"masses", masses},
+          {"connections", connections},
+          {"surfaces", surfaces},
+          {"simulation",
+           {{"t_end", t_end},
+            {"output_interval", 1e-3},
+            {"method", "rodas4"},
+            {"rtol", 1e-6},
+            {"atol", 1e-6}}}};
+}
+
+nlohmann::json quad_hopper_drop(const BenchConfig& c) {
+  const double t_end = c.quick ? 2.0 : 10.0;
+  const nlohmann::json doc = quad_hopper_mechanism(t_end);
+  const pr::Mechanism base = io::parse_mechanism(doc, "<quad_hopper_drop>").mechanism;
+  // 10 s of the drop costs seconds per run: each point is run once (c.repeat is
+  // not applied here), so the default bench stays within its budget.
+  const std::vector<double> tols =
+      c.quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6};
+  nlohmann::json out = nlohmann::json::array();
+  for (double tol : tols) {
+    for (auto norm : {pr::ErrorNorm::kState, pr::ErrorNorm::kBody}) {
+      pr::Mechanism m = base;
+      m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+      m.simulation.error_norm = norm;
+      const double c0 = thread_cpu();
+      const pr::RunSummary r = pr::simulate(m);
+      const std::vector<double> cpus = {thread_cpu() - c0}, walls = {r.wall_time};
+      // Body CoM height on the output grid; apexes are local maxima of z while the
+      // body moves up then down (refined by a parabola through three samples).
+      const pr::MechanismSystem sys(m);
+      std::vector<double> z;
+      for (const auto& y : r.y) z.push_back(sys.frames(y)[0].com.z());
+      const double z0 = z.front(), drop = 0.15;
+      std::vector<double> apex, apex_t, apex_e;
+      for (size_t i = 1; i + 1 < z.size(); ++i) {
+        if (z[i] > z[i - 1] && z[i] >= z[i + 1]) {
+          const double den = z[i - 1] - 2 * z[i] + z[i + 1];
+          const double off = den != 0 ? 0.5 * (z[i - 1] - z[i + 1]) / den : 0.0;
+          apex.push_back(z[i] - 0.25 * (z[i - 1] - z[i + 1]) * off);
+          apex_t.push_back(r.t[i]);
+          apex_e.push_back(r.energies[i].total());
+        }
+      }
+      // Only the body's flight apexes count (foot vibration makes tiny wiggles).
+      std::vector<double> a, at, ae;
+      for (size_t i = 0; i < apex.size(); ++i) {
+        if (apex[i] > z0 - 0.5 * drop) {
+          a.push_back(apex[i]);
+          at.push_back(apex_t[i]);
+          ae.push_back(apex_e[i]);
+        }
+      }
+      double apex_err = 0;
+      for (double h : a) apex_err = std::max(apex_err, std::abs(h - z0) / drop);
+      const double e0 = r.energies.front().total();
+      // Energy reference: the drop energy m g h (mechanical energy above the state
+      // standing on the ground is not well defined in both tools; this is).
+      const double drop_energy = m.total_mass() * 9.81 * drop;
+      out.push_back(
+          {{"tol", tol},
+           {"norm", norm == pr::ErrorNorm::kBody ? "body" : "state"},
+           {"t_end", t_end},
+           {"status", std::string(pr::to_string(r.status))},
+           {"wall_s", median(walls)},
+           {"cpu_s", median(cpus)},
+           {"cost_per_sim_s", median(cpus) / t_end},
+           {"steps", r.counters.steps_accepted},
+           {"rejected", r.counters.steps_rejected},
+           {"rhs", r.counters.rhs_evaluations},
+           {"jacobians", r.counters.jacobian_evaluations},
+           {"lu", r.counters.lu_factorizations},
+           {"energy_drift_rel", r.energy_drift / r.energy_scale},
+           {"energy_error_rel", r.energy_drift / drop_energy},
+           {"bounces", a.size()},
+           {"apex_heights_m", a},
+           {"apex_height_error_rel", apex_err},
+           {"first_bounce_energy_loss_rel", ae.empty() ? 0.0 : (e0 - ae.front()) / drop_energy},
+           {"max_strain", r.max_strain},
+           {"max_penetration_m", r.max_penetration}});
+    }
+  }
+  return out;
+}
+
+}  // namespace pronk::app::bench

@@ -1,0 +1,106 @@
+// The measurements of `pronk bench` (SPEC 7): work-precision sweeps of every
+// solver on the reference scenes, the pseudo-rigid stiffness sweep, the
+// fidelity ladder and the quad hopper drop that MuJoCo is compared with. Each
+// function runs one group and returns plain records; bench_command.cpp writes
+// them (JSON, CSV, figures) and merges the peers' results.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/scene/scene.hpp"
+
+namespace pronk::app::bench {
+
+/// How much to measure.
+struct BenchConfig {
+  bool quick = false;       ///< CI size: fewer points, shorter runs (< 1 min in total)
+  int repeat = 3;           ///< timed repeats per point; the median wall time is reported
+  std::string studies_dir;  ///< the shipped studies/ directory (scenes are read from it)
+};
+
+/// One point of a work-precision diagram.
+struct WorkPoint {
+  std::string problem;     ///< "satellite", "satellite_stiffness", "hopper", "hopper_stride_map"
+  std::string solver;      ///< euler, rk2, rk4, dopri5, rodas4
+  std::string variant;     ///< error norm of the pseudo-rigid runs ("state", "body"), else ""
+  double stiffness = 0.0;  ///< internal stiffness of the pseudo-rigid body [N/m]; 0: n/a
+  double tol = 0.0;        ///< rtol = atol of adaptive methods; 0 for fixed step
+  double h = 0.0;          ///< fixed step [s]; 0 for adaptive methods
+  double t_end = 0.0;      ///< simulated time [s]
+  std::string status;      ///< completed, diverged, fell, ...
+  double wall_s = 0.0;     ///< median wall time over the repeats [s]
+  double cpu_s = 0.0;      ///< median CPU time of the running thread [s] (robust on a busy machine)
+  long steps = 0, rejected = 0, rhs = 0, jacobians = 0, lu = 0;
+  /// Errors by name (only those that apply, only for completed runs):
+  ///   omega_final   |w(t_end) - w_exact(t_end)| / |w0|, satellite vs the analytic precession
+  ///   omega_l2      RMS over the output grid of |w - w_ref| / |w0| vs the tight reference run
+  ///   final_state   satellite: RMS of y(t_end) - y_ref(t_end) over all states [m, N s];
+  ///                 hopper: |CoM position(t_end) - reference| [m]
+  ///   l2_series     hopper: RMS over the 5 ms output grid of |CoM - CoM_ref| [m]
+  ///   touchdown_time  hopper: max |t_td,k - t_td,k,ref| over the strides [s]
+  ///   fixed_point   stride map: |s* - s*_ref|_inf of the periodic orbit [m, m/s, rad, rad/s]
+  std::map<std::string, double> errors;
+};
+
+/// Fitted convergence order (slope of log error vs log step) of a fixed-step method.
+struct OrderFit {
+  std::string problem, solver, error;
+  double order = 0.0;
+  int points = 0;
+};
+
+/// One model rung of the fidelity ladder at one duty-cycle setting.
+struct FidelityPoint {
+  std::string model;            ///< impulse, pulse, pseudo_rigid
+  bool available = true;        ///< false: the rung exists but cannot run yet (see note)
+  std::string note;             ///< why unavailable, or remarks
+  double pulse_duration = 0.0;  ///< stance pulse T [s] (pulse model); 0 for impulse
+  std::string status;
+  double t_end = 0.0;           ///< simulated time [s]
+  double wall_s = 0.0;          ///< median [s]
+  double cpu_s = 0.0;           ///< median CPU time [s]
+  double cost_per_sim_s = 0.0;  ///< CPU time per simulated second [s/s]
+  long strides = 0;
+  double mean_duty = 0.0;               ///< stance / stride time
+  double mean_apex = 0.0;               ///< mean apex height over strides 2.. [m]
+  double apex_rms_vs_impulse = 0.0;     ///< RMS of apex_k - apex_k(impulse) over strides 2.. [m]
+  double spectral_radius = 0.0;         ///< of the stride map at its fixed point
+  bool stable = false;                  ///< spectral radius < 1 with an orbit found
+  double fixed_point_vs_impulse = 0.0;  ///< |s* - s*_impulse|_inf
+};
+
+/// A rung of the ladder: runs the robot scene (its pulse settings chosen by the caller) in
+/// one model. The pseudo-rigid rung plugs in here when the robot exists in the full model.
+struct FidelityRung {
+  std::string model;
+  std::function<FidelityPoint(const scene::Scene&, const BenchConfig&)> run;
+};
+std::vector<FidelityRung> fidelity_rungs();
+
+/// Pseudo-rigid satellite (SPEC case 10), k = 1e6 N/m, 20 s: every solver and tolerance.
+std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c);
+/// The same satellite for k = 1e4 .. 1e8 N/m with RODAS4 (state and body norm) and DOPRI5.
+std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c);
+/// Reduced legged pulse hopper (case 3): every solver, step and tolerance; and the
+/// stride-map fixed point per tolerance.
+std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c);
+/// Fits the orders of the fixed-step methods on `points` (final-state error vs h).
+std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points);
+/// The fidelity ladder on the legged hopper for a few pulse durations.
+std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c);
+/// The quad spring hopper drop in the pseudo-rigid model (the scene the MuJoCo peer
+/// mirrors): per tolerance cost, energy-balance drift (energy_error_rel: max drift / drop
+/// energy m g 0.15 m), apex heights. JSON records.
+nlohmann::json quad_hopper_drop(const BenchConfig& c);
+/// The quad hopper drop as a mechanism document (SPEC 8 format), `t_end` simulated [s].
+nlohmann::json quad_hopper_mechanism(double t_end);
+
+/// Median of v (v non-empty).
+double median(std::vector<double> v);
+
+}  // namespace pronk::app::bench
