@@ -78,6 +78,17 @@ class ApexEvent final : public ode::EventFunction {
   const RobotModel& m_;
 };
 
+/// Bottom of a spring stance: the CoM's vertical velocity rises through zero.
+class BottomEvent final : public ode::EventFunction {
+ public:
+  explicit BottomEvent(const RobotModel& m) : m_(m) {}
+  double value(double, const ode::Vec& y) const override { return body_com(m_, y).v.z(); }
+  int direction() const override { return 1; }
+
+ private:
+  const RobotModel& m_;
+};
+
 class TiltEvent final : public ode::EventFunction {
  public:
   TiltEvent(const RobotModel& m, const pr::MechanismSystem& sys, double max_tilt)
@@ -305,9 +316,19 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   ApexEvent apex(model);
   ComHeightEvent fall_low(model, sim.fall_min_height);
   TiltEvent fall_tilt(model, msys, sim.fall_max_tilt);
+  BottomEvent bottom(model);
   const ode::EventFunction* flight_events[] = {&touchdown, &apex, &fall_low, &fall_tilt};
   const ode::EventFunction* stance_events[] = {&apex, &fall_low, &fall_tilt};
-  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3 };
+  const ode::EventFunction* armed_events[] = {&bottom, &fall_low, &fall_tilt};
+  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3, kBottom = 4 };
+  const int flight_ids[] = {kTouchdown, kApex, kFallLow, kFallTilt};
+  const int stance_ids[] = {kApex, kFallLow, kFallTilt};
+  const int armed_ids[] = {kBottom, kFallLow, kFallTilt};
+  // Spring legs: the actuators fire in the thrust phase, from the bottom of the
+  // stance (CoM velocity rising through zero) on, so a downward force lowers the
+  // takeoff speed and an upward one raises it (seed fig. 2.13).
+  bool armed = false;
+  std::vector<double> armed_force(legs, 0.0), armed_duration(legs, 0.0);
 
   result.monitors.internal_stiffness =
       mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
@@ -364,8 +385,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       }
     }
     std::span<const ode::EventFunction* const> events =
-        run.stance ? std::span<const ode::EventFunction* const>(stance_events)
-                   : std::span<const ode::EventFunction* const>(flight_events);
+        armed        ? std::span<const ode::EventFunction* const>(armed_events)
+        : run.stance ? std::span<const ode::EventFunction* const>(stance_events)
+                     : std::span<const ode::EventFunction* const>(flight_events);
+    const int* ids = armed ? armed_ids : run.stance ? stance_ids : flight_ids;
     ode::IntegrateResult r;
     if (t_target > t) {
       r = ode::integrate(sys, *stepper, t_target, events, prs.solver, &observer);
@@ -402,8 +425,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       break;
     }
     result.monitors.energy_drift = std::max(result.monitors.energy_drift, drift);
-    const int event =
-        r.reason == ode::StopReason::kEvent ? (run.stance ? r.event_index + 1 : r.event_index) : -1;
+    const int event = r.reason == ode::StopReason::kEvent ? ids[r.event_index] : -1;
     if (event == kFallLow) {
       end_run(reduced::RunStatus::kFell,
               "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
@@ -504,6 +526,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       Vector3d H = Vector3d::Zero();
       double peak = 0.0;
       std::fill(leg_force.begin(), leg_force.end(), 0.0);
+      std::fill(armed_force.begin(), armed_force.end(), 0.0);
       for (size_t i = 0; i < legs && T > 0.0 && i < plan.leg_impulse.size(); ++i) {
         const Vector3d p = plan.leg_impulse[i];
         double impulse = 0.0;  // signed along the push direction [N s]
@@ -522,6 +545,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         }
         leg_force[i] = f;
         off_time[i] = t + duration;
+        armed_force[i] = f;
+        armed_duration[i] = duration;
         stance_end = std::max(stance_end, off_time[i]);
         peak = std::max(peak, std::abs(f));
         H += model.hip[i].cross(f * duration * run.push[i]);
@@ -531,10 +556,24 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       current.peak_leg_force = peak;
       current.H_delivered = H;
       run.stance = stance_end > t;
+      if (run.stance && model.spring_legs) {
+        armed = true;  // fire at the bottom of the stance
+        std::fill(leg_force.begin(), leg_force.end(), 0.0);
+      }
+      sys.set_actuators(leg_force, run.push);
+    } else if (event == kBottom) {
+      armed = false;
+      double stance_end = t;
+      for (size_t i = 0; i < legs; ++i) {
+        leg_force[i] = armed_force[i];
+        off_time[i] = t + armed_duration[i];
+        if (leg_force[i] != 0.0) stance_end = std::max(stance_end, off_time[i]);
+      }
+      if (have_stride) current.stance_duration = stance_end - current.t_touchdown;
       sys.set_actuators(leg_force, run.push);
     } else {
       // Reached t_target: an actuator switching off, a disturbance, or the end.
-      if (run.stance) {
+      if (run.stance && !armed) {
         bool on = false;
         for (size_t i = 0; i < legs; ++i) {
           if (leg_force[i] != 0.0 && off_time[i] <= t * (1.0 + 1e-14) + 1e-14) leg_force[i] = 0.0;
