@@ -13,6 +13,7 @@
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"
+#include "sim/robot/fidelity.hpp"
 #include "sim/robot/robot_simulator.hpp"
 
 namespace pronk::app {
@@ -76,7 +77,12 @@ int run_robot_full(const SimulateArgs& args, const scene::Scene& scene) {
   }
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
-  io::write_robot_outputs(dir, scene, r, metrics);
+  // The same robot in the pulse model (milliseconds): the fidelity discrepancy.
+  scene::Scene pulse = scene;
+  pulse.model = scene::ModelKind::kPulse;
+  const robot::FidelityDiscrepancy fd =
+      robot::compare_strides(reduced::simulate(pulse, {false, true, false}), r.run);
+  io::write_robot_outputs(dir, scene, r, metrics, &fd);
   if (!args.quiet) {
     const auto& c = r.run.cost.solver;
     const auto& m = r.monitors;

@@ -1,5 +1,6 @@
 #include "sim/io/robot_output.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "sim/io/atomic_file.hpp"
@@ -63,7 +64,8 @@ std::string figure_path() {
 }  // namespace
 
 json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& r,
-                        const reduced::RunMetrics& metrics) {
+                        const reduced::RunMetrics& metrics,
+                        const robot::FidelityDiscrepancy* pulse) {
   json j = run_summary_json(scene, r.run, metrics);
   const auto& m = r.monitors;
   const auto& so = scene.pseudo_rigid.solver;
@@ -87,6 +89,13 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
       {"internal_stiffness_N_per_m", m.internal_stiffness},
       {"contact_stiffness_N_per_m", m.contact_stiffness},
       {"stiffness_note", m.stiffness.note}};
+  if (pulse != nullptr) {
+    j["pseudo_rigid"]["discrepancy_vs_pulse_model"] = {
+        {"strides_compared", pulse->strides},
+        {"max_apex_difference_m", pulse->max_apex},
+        {"max_touchdown_attitude_difference_deg", pulse->max_attitude * 180.0 / M_PI},
+        {"max_touchdown_position_difference_m", pulse->max_touchdown_position}};
+  }
   return j;
 }
 
@@ -128,9 +137,11 @@ std::string robot_feet_csv(const robot::RobotRunResult& r) {
 
 WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,
                                    const robot::RobotRunResult& r,
-                                   const reduced::RunMetrics& metrics) {
+                                   const reduced::RunMetrics& metrics,
+                                   const robot::FidelityDiscrepancy* pulse) {
   WrittenOutputs w = write_run_outputs(dir, scene, r.run, metrics);
-  write_file_atomic(dir + "/summary.json", dump_checked(robot_summary_json(scene, r, metrics)));
+  write_file_atomic(dir + "/summary.json",
+                    dump_checked(robot_summary_json(scene, r, metrics, pulse)));
   write_file_atomic(dir + "/energy.csv", robot_energy_csv(r));
   write_file_atomic(dir + "/feet.csv", robot_feet_csv(r));
   const size_t legs = r.samples.empty() ? 0 : r.samples.front().actuator_force.size();

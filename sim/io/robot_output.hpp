@@ -12,19 +12,23 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/io/run_output.hpp"
+#include "sim/robot/fidelity.hpp"
 #include "sim/robot/robot_simulator.hpp"
 
 namespace pronk::io {
 
 /// The summary document of a full-model run.
+/// `pulse` (optional): discrepancy against the pulse model of the same robot.
 nlohmann::json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& r,
-                                  const reduced::RunMetrics& metrics);
+                                  const reduced::RunMetrics& metrics,
+                                  const robot::FidelityDiscrepancy* pulse = nullptr);
 
 std::string robot_energy_csv(const robot::RobotRunResult& r);
 std::string robot_feet_csv(const robot::RobotRunResult& r);
 
 WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,
                                    const robot::RobotRunResult& r,
-                                   const reduced::RunMetrics& metrics);
+                                   const reduced::RunMetrics& metrics,
+                                   const robot::FidelityDiscrepancy* pulse = nullptr);
 
 }  // namespace pronk::io

@@ -295,9 +295,9 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   // request (leg placement).
   auto context = [&](double time, bool total) {
     const Layer& L = layer_at(time);
-    const control::BodyController& b =
-        model.spring_legs && !total ? static_cast<const control::BodyController&>(*L.rebound)
-                                    : *L.pd;
+    const control::BodyController& b = model.spring_legs && !total
+                                           ? static_cast<const control::BodyController&>(*L.rebound)
+                                           : *L.pd;
     return control::StanceContext{*L.scene, b, *L.legs};
   };
 
@@ -465,7 +465,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           const double tf = std::sqrt(2.0 * dz / g);
           s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
           s.velocity.z() -= g * tf;
-          const control::StancePlan pred = control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
+          const control::StancePlan pred =
+              control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
           const std::vector<Vector3d> u = leg_directions(pred, legs, prs.max_leg_angle);
           const double e_before = msys.energies(y).total();
           const pr::BodyFrame f = msys.frames(y)[model.body];
@@ -540,7 +541,19 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         double f = impulse / T, duration = T;
         if (prs.actuator_max_force > 0.0 && std::abs(f) > prs.actuator_max_force) {
           f = std::copysign(prs.actuator_max_force, f);
-          if (prs.impulse_feedback) duration = std::abs(impulse) / prs.actuator_max_force;
+          if (prs.impulse_feedback) {
+            // The leg measures the net impulse it gives the body (its force minus its
+            // share s of the weight it was compensating for, shares in proportion to
+            // the legs' impulses) and stays on until that reaches its allocation net of
+            // compensation: F_max T' - s T' = p - s T.
+            double sum = 0.0;
+            for (const auto& q : plan.leg_impulse) sum += q.norm();
+            const double share =
+                sum > 0.0 ? plan.gravity_compensation / T * std::abs(impulse) / sum : 0.0;
+            const double net_rate = prs.actuator_max_force - share;
+            duration = net_rate > 0.0 ? (std::abs(impulse) - share * T) / net_rate
+                                      : std::abs(impulse) / prs.actuator_max_force;
+          }
           ++res.warnings["actuator_saturated"];
         }
         leg_force[i] = f;
