@@ -7,7 +7,9 @@
 //    for a few solver tolerances and both error norms. Anchor (measured by the
 //    issue's author): MuJoCo 2.2.2, Euler 1 ms, 0.041 s (RK4 0.27 s), losing
 //    about 4 % of the drop energy on the first bounce.
-//  - ladder: 10 s of running (studies/scenes/pr_running.json) at each fidelity.
+//  - ladder: 10 s of running after a moving setpoint from 10 deg roll and a
+//    0.4 m lateral offset (studies/scenes/fidelity_duty15.json: pulse legs as
+//    forces at ghost-point hips, 15 % duty) at each fidelity.
 #include <cstdio>
 #include <string>
 
@@ -55,7 +57,7 @@ void drop(double tol, bool body_norm, bool* first) {
 }
 
 void ladder(scene::ModelKind model, bool* first) {
-  scene::Scene s = io::load_scene(scene_path("pr_running.json"));
+  scene::Scene s = io::load_scene(scene_path("fidelity_duty15.json"));
   s.model = model;
   s.simulation.duration = 10.0;
   reduced::RunResult run;

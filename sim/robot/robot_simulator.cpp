@@ -46,17 +46,23 @@ Com body_com(const RobotModel& m, const ode::Vec& y) {
 /// the elastic rebound -2 m v_z. Wraps the unchanged body controller.
 class SpringReboundController final : public control::BodyController {
  public:
-  SpringReboundController(const control::BodyController& inner, double mass)
-      : inner_(inner), mass_(mass) {}
+  /// push: the legs' common push direction, body frame (prismatic legs push only
+  /// along it, so the linear request is projected on it before allocation).
+  SpringReboundController(const control::BodyController& inner, double mass,
+                          const Vector3d* push)
+      : inner_(inner), mass_(mass), push_(push) {}
   control::BodyCommand command(double t, const control::BodyState& s) const override {
     control::BodyCommand c = inner_.command(t, s);
     c.P_world.z() += 2.0 * mass_ * std::min(0.0, s.velocity.z());
+    const Vector3d d = s.rotation * *push_;
+    c.P_world = c.P_world.dot(d) * d;
     return c;
   }
 
  private:
   const control::BodyController& inner_;
   double mass_;
+  const Vector3d* push_;
 };
 
 class ComHeightEvent final : public ode::EventFunction {
@@ -226,18 +232,17 @@ class Observer final : public ode::StepObserver {
   long count_ = 0;
 };
 
-/// Leg placement for the predicted touchdown: unit body-frame leg directions
-/// (hip -> foot) opposite to the allocated impulses, within max_angle of -z.
+/// Leg placement for the predicted touchdown: every leg parallel to the net linear
+/// impulse the legs must deliver (body frame, no body-y part), within max_angle of
+/// -z, so the spring rebound pushes where the impulse must go without adding a
+/// moment of its own; the moments are left to the actuators. Unit directions hip -> foot.
 std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t legs,
                                      double max_angle) {
   std::vector<Vector3d> u(legs, -Vector3d::UnitZ());
-  for (size_t i = 0; i < legs && i < plan.leg_impulse.size(); ++i) {
-    const Vector3d p = plan.leg_impulse[i];
-    if (!(p.z() > 1e-12)) continue;  // no upward push: keep the leg straight down
-    double angle = std::atan2(p.x(), p.z());
-    angle = std::clamp(angle, -max_angle, max_angle);
-    u[i] = Vector3d(-std::sin(angle), 0.0, -std::cos(angle));
-  }
+  const Vector3d p = plan.P_body;
+  if (!(p.z() > 1e-12)) return u;  // no upward push: legs straight down
+  const double angle = std::clamp(std::atan2(p.x(), p.z()), -max_angle, max_angle);
+  for (auto& ui : u) ui = Vector3d(-std::sin(angle), 0.0, -std::cos(angle));
   return u;
 }
 
@@ -263,6 +268,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   scene::Scene plan_scene = scene;
   plan_scene.model = scene::ModelKind::kPulse;
   if (model.spring_legs) plan_scene.pulse.gravity_compensation = false;
+  Vector3d common_push = Vector3d::UnitZ();  // legs' push direction, body frame
   // One controller per hop-height setpoint (controller.hop_height_changes).
   struct Layer {
     std::unique_ptr<scene::Scene> scene;
@@ -279,7 +285,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     L.pd = std::make_unique<control::PdBodyController>(
         L.scene->controller, g, l, !scene.legs.body_only, false,
         L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
-    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass);
+    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push);
     L.legs = control::make_leg_controller(*L.scene);
     L.from = from;
     layers.push_back(std::move(L));
@@ -488,6 +494,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
             mech.surfaces[model.slide[i]].direction = u[i];
             run.push[i] = -u[i];
           }
+          common_push = -u[0];
           result.monitors.hip_work += msys.energies(y).total() - e_before;
         }
       }
