@@ -27,6 +27,7 @@ RobotModel build_robot(const scene::Scene& s) {
   std::vector<Vector3d> hips =
       s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
   const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
+  Vector3d offset = Vector3d::Zero();  // main-mass centroid relative to the CoM, body frame [m]
   // Dummy masses are part of the body: the four main masses carry the rest so the
   // total mass and inertia about the CoM stay those of the scene.
   pr::BodySpec b;
@@ -35,7 +36,7 @@ RobotModel build_robot(const scene::Scene& s) {
   b.inertia = s.body.inertia;
   if (dummy) {
     const double md = p.dummy_ratio * s.body.mass;
-    Vector3d first_moment = Vector3d::Zero();
+    Vector3d first_moment = Vector3d::Zero();  // of the dummies about the CoM [kg m]
     for (const Vector3d& h : hips) {
       b.mass -= md;
       b.inertia -= md * (h.squaredNorm() * Matrix3d::Identity() - h * h.transpose());
@@ -46,16 +47,16 @@ RobotModel build_robot(const scene::Scene& s) {
                                   std::to_string(p.dummy_ratio) +
                                   " of the body mass) leave no mass for the body");
     }
-    if (first_moment.norm() > 1e-9 * s.body.mass) {
-      throw std::invalid_argument(
-          "dummy-mass hips need a layout symmetric about the CoM (their first moment is not "
-          "zero)");
-    }
+    // The main masses' centroid sits at c so that the whole body's CoM stays at the
+    // scene's; their inertia about c is what the dummies and the offset leave.
+    offset = -first_moment / b.mass;
+    b.inertia -=
+        b.mass * (offset.squaredNorm() * Matrix3d::Identity() - offset * offset.transpose());
   }
-  b.com = s.initial.position;
+  b.com = s.initial.position + s.initial.attitude.toRotationMatrix() * offset;
   b.attitude = s.initial.attitude.toRotationMatrix();
-  b.velocity = s.initial.velocity;
   b.omega = b.attitude * s.initial.angular_velocity;
+  b.velocity = s.initial.velocity + b.omega.cross(b.attitude * offset);
   b.internal_stiffness = p.internal_stiffness;
   b.internal_damping = p.internal_damping;
   std::string err;
@@ -65,8 +66,8 @@ RobotModel build_robot(const scene::Scene& s) {
   const Matrix3d R = b.attitude;
   for (size_t i = 0; i < hips.size(); ++i) {
     const std::string name = "leg" + std::to_string(i);
-    const Vector3d h = hips[i];
-    r.hip.push_back(h);
+    const Vector3d h = hips[i] - offset;  // relative to the main masses' centroid
+    r.hip.push_back(hips[i]);
     r.direction.push_back(-Vector3d::UnitZ());
     const pr::NodeRef ghost = pr::add_ghost_point(m, r.body, name + ".hip", h);
     r.hip_node.push_back(dummy ? pr::add_dummy_mass(m, r.body, name + ".hip_mass", h, p.dummy_ratio,
@@ -79,7 +80,7 @@ RobotModel build_robot(const scene::Scene& s) {
       continue;
     }
     // The foot touches the ground when the CoM of a level body is at legs.length.
-    const double rest = s.legs.length + h.z();
+    const double rest = s.legs.length + hips[i].z();
     if (!(rest > 0.0)) {
       throw std::invalid_argument("leg " + std::to_string(i) + ": hip z " + std::to_string(h.z()) +
                                   " m leaves no leg below it for length " +

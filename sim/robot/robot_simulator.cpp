@@ -26,18 +26,23 @@ std::string fmt(double x) {
   return s.str();
 }
 
-/// CoM position and velocity of the body's four main masses.
 struct Com {
-  Vector3d x, v;
+  Vector3d x, v;  ///< [m], [m/s]
 };
+
+/// CoM position and velocity of the body: its four main masses and its dummy masses.
 Com body_com(const RobotModel& m, const ode::Vec& y) {
-  const auto& b = m.mechanism.bodies[m.body];
   Com c{Vector3d::Zero(), Vector3d::Zero()};
-  const double mi = m.mechanism.masses[b.first_mass].mass;
-  for (int k = 0; k < 4; ++k) {
-    c.x += 0.25 * y.segment<3>(6 * (b.first_mass + k));
-    c.v += 0.25 * y.segment<3>(6 * (b.first_mass + k) + 3) / mi;
+  double total = 0.0;
+  for (size_t j = 0; j < m.mechanism.masses.size(); ++j) {
+    const auto& ms = m.mechanism.masses[j];
+    if (ms.body != m.body && ms.dummy_of != m.body) continue;
+    c.x += ms.mass * y.segment<3>(6 * j);
+    c.v += y.segment<3>(6 * j + 3);
+    total += ms.mass;
   }
+  c.x /= total;
+  c.v /= total;
   return c;
 }
 
@@ -48,8 +53,7 @@ class SpringReboundController final : public control::BodyController {
  public:
   /// push: the legs' common push direction, body frame (prismatic legs push only
   /// along it, so the linear request is projected on it before allocation).
-  SpringReboundController(const control::BodyController& inner, double mass,
-                          const Vector3d* push)
+  SpringReboundController(const control::BodyController& inner, double mass, const Vector3d* push)
       : inner_(inner), mass_(mass), push_(push) {}
   control::BodyCommand command(double t, const control::BodyState& s) const override {
     control::BodyCommand c = inner_.command(t, s);
@@ -128,9 +132,10 @@ struct Run {
 
   control::BodyState body_state(const ode::Vec& y) const {
     const pr::BodyFrame& f = msys.frames(y)[model.body];
+    const Com c = body_com(model, y);
     control::BodyState s;
-    s.position = f.com;
-    s.velocity = f.com_velocity;
+    s.position = c.x;
+    s.velocity = c.v;
     s.rotation = f.rotation;
     s.attitude = Eigen::Quaterniond(f.rotation).normalized();
     s.omega = f.rotation.transpose() * msys.body_omega(model.body, y);
