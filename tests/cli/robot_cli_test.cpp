@@ -56,9 +56,20 @@ struct Run {
 };
 
 Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd " + quote(dir.path) + " && exec " + quote(PRONK_EXE);
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " >" + quote(dir / ".stdout") + " 2>" + quote(dir / ".stderr") + " </dev/null";
+  // Appends only (operator+ on strings trips GCC 12's -Wrestrict false positive).
+  std::string cmd = "cd ";
+  cmd += quote(dir.path);
+  cmd += " && exec ";
+  cmd += quote(PRONK_EXE);
+  for (const auto& a : args) {
+    cmd += ' ';
+    cmd += quote(a);
+  }
+  cmd += " >";
+  cmd += quote(dir / ".stdout");
+  cmd += " 2>";
+  cmd += quote(dir / ".stderr");
+  cmd += " </dev/null";
   const int status = std::system(cmd.c_str());
   Run r;
   if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
