@@ -7,11 +7,14 @@
 #include "sim/io/json_reader.hpp"
 #include "sim/io/mechanism_loader.hpp"
 #include "sim/io/mechanism_output.hpp"
+#include "sim/io/robot_output.hpp"
 #include "sim/io/run_output.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"
+#include "sim/robot/fidelity.hpp"
+#include "sim/robot/robot_simulator.hpp"
 
 namespace pronk::app {
 
@@ -23,8 +26,9 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
       "A scene with \"kind\": \"mechanism\" is a pseudo-rigid mechanism: nodes.csv, bodies.csv,\n"
       "energy.csv, summary.json, scene.resolved.json, energy.svg, motion.svg.");
   cmd->add_option("scene", args.scene_path, "Scene file (JSON)")->required();
-  cmd->add_option("--model", args.model, "Model: impulse or pulse (default: the scene's)")
-      ->check(CLI::IsMember({"impulse", "pulse"}));
+  cmd->add_option("--model", args.model,
+                  "Model: impulse, pulse or pseudo_rigid (default: the scene's)")
+      ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid"}));
   cmd->add_option("--set", args.overrides,
                   "Override a scene value: --set /json/pointer=value (repeatable)")
       ->type_name("/PTR=VALUE");
@@ -65,6 +69,44 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }
 
+/// A robot scene in the full (pseudo-rigid) model.
+int run_robot_full(const SimulateArgs& args, const scene::Scene& scene) {
+  robot::RobotRunResult r;
+  try {
+    r = robot::simulate(scene);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(args.scene_path, "/pseudo_rigid", "a robot the full model can build",
+                         e.what());
+  }
+  const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
+  const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
+  // The same robot in the pulse model (milliseconds): the fidelity discrepancy.
+  scene::Scene pulse = scene;
+  pulse.model = scene::ModelKind::kPulse;
+  const robot::FidelityDiscrepancy fd =
+      robot::compare_strides(reduced::simulate(pulse, {false, true, false}), r.run);
+  io::write_robot_outputs(dir, scene, r, metrics, &fd);
+  if (!args.quiet) {
+    const auto& c = r.run.cost.solver;
+    const auto& m = r.monitors;
+    std::printf("%s (pseudo_rigid model): %s, %s\n", scene.name.c_str(),
+                std::string(reduced::to_string(r.run.status)).c_str(), r.run.reason.c_str());
+    std::printf("  strides %ld, final error x %.4f m, y %.4f m, roll %.3f deg, pitch %.3f deg\n",
+                metrics.strides, metrics.final_x_error, metrics.final_y_error,
+                metrics.final_roll * 180 / M_PI, metrics.final_pitch * 180 / M_PI);
+    std::printf(
+        "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g m, "
+        "max slip %.3g m\n",
+        m.energy_drift, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, m.max_strain,
+        m.max_penetration, m.max_slip);
+    std::printf("  cost: %ld steps (%ld rejected), %ld RHS, %ld Jacobians, %ld LU, %.3f ms\n",
+                c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
+                c.lu_factorizations, r.run.cost.wall_time * 1e3);
+    std::printf("  outputs in %s/\n", dir.c_str());
+  }
+  return r.run.status == reduced::RunStatus::kCompleted ? 0 : 1;
+}
+
 }  // namespace
 
 int run_simulate(const SimulateArgs& args) {
@@ -78,6 +120,7 @@ int run_simulate(const SimulateArgs& args) {
   }
   if (!args.model.empty()) io::apply_override(doc, "/model=\"" + args.model + "\"");
   const scene::Scene scene = io::parse_scene(doc, args.scene_path);
+  if (scene.model == scene::ModelKind::kPseudoRigid) return run_robot_full(args, scene);
   const reduced::RunResult run = reduced::simulate(scene);
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, run);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;

@@ -6,6 +6,7 @@
 
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/plot.hpp"
+#include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
 
 namespace pronk::io {
@@ -84,6 +85,7 @@ json run_summary_json(const scene::Scene& scene, const reduced::RunResult& run,
             {"max_flight_energy_drift", run.monitors.max_flight_energy_drift},
             {"max_quaternion_norm_error", run.monitors.max_quaternion_norm_error}}},
           {"warnings", warnings},
+          {"unused_by_this_model", unused_settings(scene)},
           {"solver",
            {{"method", std::string(ode::to_string(scene.simulation.solver.method))},
             {"rtol", scene.simulation.solver.rtol},

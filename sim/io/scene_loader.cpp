@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "sim/io/json_reader.hpp"
+#include "sim/io/robot_settings.hpp"
 
 namespace pronk::io {
 
@@ -156,8 +157,10 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
   if (s.name.empty() || s.name.find('/') != std::string::npos) {
     throw r.error("name", "a non-empty name without '/'", "\"" + s.name + "\"");
   }
-  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse"});
-  s.model = model == "pulse" ? scene::ModelKind::kPulse : scene::ModelKind::kImpulse;
+  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid"});
+  s.model = model == "pulse"          ? scene::ModelKind::kPulse
+            : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid
+                                      : scene::ModelKind::kImpulse;
   s.gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
   const std::string att =
       r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
@@ -236,6 +239,17 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     } else {
       c.optional("allocation");
     }
+    if (c.has("hop_height_changes")) {
+      for (JsonReader h : c.object_array("hop_height_changes")) {
+        const double time = h.number("time", 0.0, 1e9);
+        k.hop_height_changes.emplace_back(time, h.positive_or("hop_height", k.hop_height));
+        h.finish();
+      }
+      std::stable_sort(k.hop_height_changes.begin(), k.hop_height_changes.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+    } else {
+      c.optional("hop_height_changes");
+    }
     if (c.has("gait")) {
       JsonReader g = c.object("gait");
       const std::string kind = g.choice_or("kind", "pronk", {"pronk", "alternate"});
@@ -271,6 +285,11 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     r.optional("pulse");
   }
 
+  if (r.has("pseudo_rigid")) {
+    parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid);
+  } else {
+    r.optional("pseudo_rigid");
+  }
   if (r.has("initial")) {
     JsonReader in = r.object("initial");
     s.initial.position = in.vec3_or("position", s.initial.position);
@@ -429,10 +448,18 @@ json scene_to_json(const scene::Scene& s) {
         {"max_leg_impulse", c.allocation.max_leg_impulse},
         {"residual_tol", c.allocation.residual_tol}}},
       {"gait", gait}};
+  if (!c.hop_height_changes.empty()) {
+    json ch = json::array();
+    for (const auto& [time, h] : c.hop_height_changes) {
+      ch.push_back({{"time", time}, {"hop_height", h}});
+    }
+    j["controller"]["hop_height_changes"] = ch;
+  }
   j["pulse"] = {{"mode", s.pulse.mode == scene::PulseMode::kDuration ? "duration" : "max_force"},
                 {"max_force", s.pulse.max_force},
                 {"duration", s.pulse.duration},
                 {"gravity_compensation", s.pulse.gravity_compensation}};
+  j["pseudo_rigid"] = pseudo_rigid_to_json(s.pseudo_rigid);
   const auto& q = s.initial.attitude;
   j["initial"] = {{"position", vec(s.initial.position)},
                   {"velocity", vec(s.initial.velocity)},

@@ -8,6 +8,8 @@ std::string_view to_string(ModelKind k) {
       return "impulse";
     case ModelKind::kPulse:
       return "pulse";
+    case ModelKind::kPseudoRigid:
+      return "pseudo_rigid";
   }
   return "?";
 }

@@ -19,7 +19,7 @@ using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 /// Which model simulates the scene.
-enum class ModelKind { kImpulse, kPulse };
+enum class ModelKind { kImpulse, kPulse, kPseudoRigid };
 std::string_view to_string(ModelKind k);
 
 /// Attitude integration: exact quaternion kinematics, or the seed's small-angle
@@ -74,6 +74,9 @@ struct Controller {
   control::AllocationOptions allocation;
   Gait gait = Gait::kPronk;
   std::vector<std::vector<int>> gait_groups;  ///< leg index groups for kAlternate
+  /// Hop-height setpoint changes (time [s], new hop height [m]), sorted by time
+  /// (seed fig. 2.13). Used by the pseudo-rigid model; the reduced models ignore it.
+  std::vector<std::pair<double, double>> hop_height_changes;
 };
 
 /// Pulse model settings (seed 2.6).
@@ -83,6 +86,62 @@ struct Pulse {
   double max_force = 60.0;           ///< per-leg force limit in max_force mode [N]
   double duration = 0.05;            ///< stance duration T in duration mode [s]
   bool gravity_compensation = true;  ///< add m g T to the vertical impulse (seed 2.6.1)
+};
+
+/// Settings only the pseudo-rigid model uses (SPEC 3.2; seed 2.7-2.8). The
+/// reduced models accept and ignore them. The ground is the plane z = 0, as
+/// in the reduced models (touchdown when the CoM falls through legs.length).
+struct PseudoRigid {
+  /// Hips: ghost points (forces transferred to the four body masses) or dummy
+  /// masses tied to them (seed 4.3).
+  enum class Hips { kGhost, kDummy };
+  /// Legs: `force` = leg forces act at the hips only, no leg or foot is modelled
+  /// (seed 2.7); `spring` = a foot mass on a line through the hip (prismatic
+  /// leg) with a leg spring, damper and actuator in parallel (seed 2.8).
+  enum class Legs { kForce, kSpring };
+  Hips hips = Hips::kGhost;
+  double dummy_ratio = 0.02;  ///< dummy mass / body mass [-]
+  Legs legs = Legs::kSpring;
+  double internal_stiffness = 1e5;   ///< body springs, also the leg slides [N/m]
+  bool internal_auto = false;        ///< choose it from strain_budget
+  double internal_damping = 0.0;     ///< [N s/m]
+  double contact_stiffness = 1e5;    ///< foot-ground springs [N/m]
+  bool contact_auto = false;         ///< choose it from penetration_budget
+  double contact_damping = 0.0;      ///< [N s/m]
+  double strain_budget = 1e-4;       ///< allowed internal strain for "auto" [-]
+  double penetration_budget = 1e-4;  ///< allowed penetration for "auto" [m]
+  double foot_mass = 0.01;           ///< [kg]
+  double leg_stiffness = 100.0;      ///< leg spring [N/m]
+  double leg_damping = 0.0;          ///< leg damper [N s/m]
+  /// Leg actuator force limit [N]; 0 = unlimited. A saturated pulse delivers less
+  /// than requested unless impulse_feedback keeps the actuator on.
+  double actuator_max_force = 0.0;
+  /// Leg controllers close the loop on delivered impulse (seed 5.4): each actuator
+  /// stays on until the impulse it delivered reaches its allocation.
+  bool impulse_feedback = false;
+  /// false: passive legs, the controller never acts (drop tests, seed fig. 2.11).
+  bool actuators = true;
+  double friction = 0.0;        ///< Coulomb coefficient mu [-]; 0 = frictionless feet
+  double slip_velocity = 1e-3;  ///< regularisation speed of the friction law [m/s]
+  /// Hip actuators place each leg at the flight apex along the impulse the
+  /// controller will ask it for at the predicted touchdown (running).
+  bool hip_rotation = false;
+  double max_leg_angle = 0.5;  ///< hip placement limit from body -z [rad]
+  /// Error norm of the adaptive solver: false = every state (resolves the stiff
+  /// springs' vibration, energy balance exact to tolerance), true = body level
+  /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
+  bool body_error_norm = false;
+  /// The stiff solver of the full model (defaults: rodas4, rtol 1e-6, atol 1e-8).
+  ode::SolverOptions solver = default_solver();
+  static ode::SolverOptions default_solver() {
+    ode::SolverOptions s;
+    s.method = ode::Method::kRodas4;
+    s.rtol = 1e-6;
+    s.atol = 1e-8;
+    s.h_max = 0.01;
+    s.event_tol = 1e-10;
+    return s;
+  }
 };
 
 /// Initial state.
@@ -119,6 +178,7 @@ struct Scene {
   Legs legs;
   Controller controller;
   Pulse pulse;
+  PseudoRigid pseudo_rigid;
   Initial initial;
   std::vector<Disturbance> disturbances;  ///< sorted by time
   Simulation simulation;

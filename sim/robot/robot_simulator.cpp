@@ -1,0 +1,675 @@
+#include "sim/robot/robot_simulator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "sim/control/stance_planner.hpp"
+#include "sim/math/rotation.hpp"
+#include "sim/robot/robot_system.hpp"
+
+namespace pronk::robot {
+
+namespace pr = pseudorigid;
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+struct Com {
+  Vector3d x, v;  ///< [m], [m/s]
+};
+
+/// CoM position and velocity of the body: its four main masses and its dummy masses.
+Com body_com(const RobotModel& m, const ode::Vec& y) {
+  Com c{Vector3d::Zero(), Vector3d::Zero()};
+  double total = 0.0;
+  for (size_t j = 0; j < m.mechanism.masses.size(); ++j) {
+    const auto& ms = m.mechanism.masses[j];
+    if (ms.body != m.body && ms.dummy_of != m.body) continue;
+    c.x += ms.mass * y.segment<3>(6 * j);
+    c.v += y.segment<3>(6 * j + 3);
+    total += ms.mass;
+  }
+  c.x /= total;
+  c.v /= total;
+  return c;
+}
+
+/// The spring-leg leg layer (seed 2.8.1): the springs return the touchdown
+/// momentum, so the actuators are asked for the body controller's request minus
+/// the elastic rebound -2 m v_z. Wraps the unchanged body controller.
+class SpringReboundController final : public control::BodyController {
+ public:
+  /// push: the legs' common push direction, body frame (prismatic legs push only
+  /// along it, so the linear request is projected on it before allocation).
+  SpringReboundController(const control::BodyController& inner, double mass, const Vector3d* push)
+      : inner_(inner), mass_(mass), push_(push) {}
+  control::BodyCommand command(double t, const control::BodyState& s) const override {
+    control::BodyCommand c = inner_.command(t, s);
+    c.P_world.z() += 2.0 * mass_ * std::min(0.0, s.velocity.z());
+    const Vector3d d = s.rotation * *push_;
+    c.P_world = c.P_world.dot(d) * d;
+    return c;
+  }
+
+ private:
+  const control::BodyController& inner_;
+  double mass_;
+  const Vector3d* push_;
+};
+
+class ComHeightEvent final : public ode::EventFunction {
+ public:
+  ComHeightEvent(const RobotModel& m, double level) : m_(m), level_(level) {}
+  double value(double, const ode::Vec& y) const override { return body_com(m_, y).x.z() - level_; }
+
+ private:
+  const RobotModel& m_;
+  double level_;
+};
+
+class ApexEvent final : public ode::EventFunction {
+ public:
+  explicit ApexEvent(const RobotModel& m) : m_(m) {}
+  double value(double, const ode::Vec& y) const override { return body_com(m_, y).v.z(); }
+
+ private:
+  const RobotModel& m_;
+};
+
+/// Bottom of a spring stance: the CoM's vertical velocity rises through zero.
+class BottomEvent final : public ode::EventFunction {
+ public:
+  explicit BottomEvent(const RobotModel& m) : m_(m) {}
+  double value(double, const ode::Vec& y) const override { return body_com(m_, y).v.z(); }
+  int direction() const override { return 1; }
+
+ private:
+  const RobotModel& m_;
+};
+
+class TiltEvent final : public ode::EventFunction {
+ public:
+  TiltEvent(const RobotModel& m, const pr::MechanismSystem& sys, double max_tilt)
+      : m_(m), sys_(sys), cos_max_(std::cos(max_tilt)) {}
+  double value(double, const ode::Vec& y) const override {
+    return sys_.frames(y)[m_.body].rotation(2, 2) - cos_max_;
+  }
+
+ private:
+  const RobotModel& m_;
+  const pr::MechanismSystem& sys_;
+  double cos_max_;
+};
+
+/// Per-run bookkeeping shared by the step observer and the loop.
+struct Run {
+  Run(const scene::Scene& s, const RobotModel& m, const RobotSystem& y,
+      const pr::MechanismSystem& ms, RobotRunResult& o)
+      : scene(s), model(m), sys(y), msys(ms), out(o) {}
+  const scene::Scene& scene;
+  const RobotModel& model;
+  const RobotSystem& sys;
+  const pr::MechanismSystem& msys;
+  RobotRunResult& out;
+  bool record = true;
+  double dissipated = 0.0, work = 0.0;
+  bool stance = false;
+  std::vector<bool> in_contact;
+  std::vector<Eigen::Vector2d> contact_start;
+  double stride_slip = 0.0;
+
+  control::BodyState body_state(const ode::Vec& y) const {
+    const pr::BodyFrame& f = msys.frames(y)[model.body];
+    const Com c = body_com(model, y);
+    control::BodyState s;
+    s.position = c.x;
+    s.velocity = c.v;
+    s.rotation = f.rotation;
+    s.attitude = Eigen::Quaterniond(f.rotation).normalized();
+    s.omega = f.rotation.transpose() * msys.body_omega(model.body, y);
+    s.euler123 = math::matrix_to_euler(f.rotation, math::EulerSet::k123);
+    return s;
+  }
+
+  void sample(double t, const ode::Vec& y) {
+    const control::BodyState s = body_state(y);
+    reduced::Sample smp;
+    smp.t = t;
+    smp.position = s.position;
+    smp.velocity = s.velocity;
+    smp.euler123 = s.euler123;
+    smp.omega = s.omega;
+    smp.setpoint = scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
+    smp.stance = stance;
+    RobotSample rs;
+    rs.t = t;
+    rs.energies = msys.energies(y);
+    rs.dissipated = dissipated;
+    rs.actuator_work = work + out.monitors.hip_work;
+    rs.actuator_force = sys.actuator_forces();
+    for (size_t i = 0; i < model.hip.size(); ++i) {
+      // Σ actuator forces on the body (world), as the reduced models' leg force.
+      smp.leg_force_world += rs.actuator_force[i] * (s.rotation * push[i]);
+    }
+    if (model.spring_legs) {
+      rs.normal_force = sys.normal_forces(y);
+      for (int f : model.foot) rs.foot_z.push_back(y[6 * f + 2]);
+    }
+    out.run.trajectory.push_back(smp);
+    out.samples.push_back(std::move(rs));
+  }
+
+  /// Monitors at the end of an accepted step.
+  void monitor(const ode::Vec& y) {
+    const pr::StateMonitors m = msys.monitors(y);
+    out.monitors.max_strain = std::max(out.monitors.max_strain, m.max_strain);
+    out.monitors.max_penetration = std::max(out.monitors.max_penetration, m.max_penetration);
+    if (!model.spring_legs) return;
+    const std::vector<double> n = sys.normal_forces(y);
+    const std::vector<Vector3d> ft = sys.friction_forces(y);
+    for (size_t i = 0; i < model.foot.size(); ++i) {
+      const int f = model.foot[i];
+      const Eigen::Vector2d xy = y.segment<2>(6 * f);
+      if (y[6 * f + 2] < 0.0) {
+        if (!in_contact[i]) contact_start[i] = xy;
+        in_contact[i] = true;
+        const double slip = (xy - contact_start[i]).norm();
+        stride_slip = std::max(stride_slip, slip);
+        out.monitors.max_slip = std::max(out.monitors.max_slip, slip);
+        if (n[i] > 0.0) {
+          out.monitors.max_friction_ratio =
+              std::max(out.monitors.max_friction_ratio, ft[i].norm() / n[i]);
+        }
+      } else {
+        in_contact[i] = false;
+      }
+    }
+  }
+
+  std::vector<Vector3d> push;  ///< body-frame push direction of each actuator
+};
+
+class Observer final : public ode::StepObserver {
+ public:
+  Observer(Run& run, double interval, int n) : run_(run), interval_(interval), yq_(n) {}
+  void on_step(const ode::Stepper& st, double t_stop) override {
+    const double ta = st.t_prev(), tb = t_stop;
+    static const double s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
+    static const double w[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    for (int q = 0; q < 3; ++q) {
+      st.dense(ta + s[q] * (tb - ta), yq_);
+      const pr::PowerFlows p = run_.msys.power(yq_);
+      const ExtraPower e = run_.sys.power(yq_);
+      run_.dissipated += w[q] * (tb - ta) * (p.dissipated + e.friction);
+      run_.work += w[q] * (tb - ta) * (p.actuator + e.actuator);
+    }
+    st.dense(tb, yq_);
+    run_.monitor(yq_);
+    if (!run_.record) return;
+    while (next_ <= tb + 1e-12 * std::max(1.0, tb)) {
+      st.dense(std::min(next_, tb), yq_);
+      run_.sample(next_, yq_);
+      next_ = interval_ * static_cast<double>(++count_);
+    }
+  }
+  void start(const ode::Vec& y) {
+    if (run_.record) run_.sample(0.0, y);
+    next_ = interval_ * static_cast<double>(++count_);
+  }
+
+ private:
+  Run& run_;
+  double interval_;
+  ode::Vec yq_;
+  double next_ = 0.0;
+  long count_ = 0;
+};
+
+/// Leg placement for the predicted touchdown: every leg parallel to the net linear
+/// impulse the legs must deliver (body frame, no body-y part), within max_angle of
+/// -z, so the spring rebound pushes where the impulse must go without adding a
+/// moment of its own; the moments are left to the actuators. Unit directions hip -> foot.
+std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t legs,
+                                     double max_angle) {
+  std::vector<Vector3d> u(legs, -Vector3d::UnitZ());
+  const Vector3d p = plan.P_body;
+  if (!(p.z() > 1e-12)) return u;  // no upward push: legs straight down
+  const double angle = std::clamp(std::atan2(p.x(), p.z()), -max_angle, max_angle);
+  for (auto& ui : u) ui = Vector3d(-std::sin(angle), 0.0, -std::cos(angle));
+  return u;
+}
+
+}  // namespace
+
+RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  RobotRunResult result;
+  reduced::RunResult& res = result.run;
+  const RobotModel model = build_robot(scene);
+  pr::Mechanism mech = model.mechanism;  // this run's copy: hip placement turns the slides
+  const scene::PseudoRigid& prs = scene.pseudo_rigid;
+  RobotSystem sys(model, mech, prs);
+  const pr::MechanismSystem& msys = sys.mechanism();
+  const int n = sys.dimension();
+  const size_t legs = model.hip.size();
+  const double g = scene.gravity;
+  const double l = scene.legs.length;
+  const auto& sim = scene.simulation;
+
+  // The same three control layers as the reduced models, planned as constant-force
+  // pulses (the pulse settings); the spring legs' layer removes the rebound.
+  scene::Scene plan_scene = scene;
+  plan_scene.model = scene::ModelKind::kPulse;
+  if (model.spring_legs) plan_scene.pulse.gravity_compensation = false;
+  Vector3d common_push = Vector3d::UnitZ();  // legs' push direction, body frame
+  // One controller per hop-height setpoint (controller.hop_height_changes).
+  struct Layer {
+    std::unique_ptr<scene::Scene> scene;
+    std::unique_ptr<control::PdBodyController> pd;
+    std::unique_ptr<SpringReboundController> rebound;
+    std::unique_ptr<control::LegController> legs;
+    double from = 0.0;  ///< in use from this time on [s]
+  };
+  std::vector<Layer> layers;
+  auto add_layer = [&](double from, double hop_height) {
+    Layer L;
+    L.scene = std::make_unique<scene::Scene>(plan_scene);
+    L.scene->controller.hop_height = hop_height;
+    L.pd = std::make_unique<control::PdBodyController>(
+        L.scene->controller, g, l, !scene.legs.body_only, false,
+        L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
+    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push);
+    L.legs = control::make_leg_controller(*L.scene);
+    L.from = from;
+    layers.push_back(std::move(L));
+  };
+  add_layer(0.0, scene.controller.hop_height);
+  for (const auto& [time, h] : scene.controller.hop_height_changes) add_layer(time, h);
+  auto layer_at = [&](double time) -> const Layer& {
+    size_t k = 0;
+    while (k + 1 < layers.size() && layers[k + 1].from <= time) ++k;
+    return layers[k];
+  };
+  // The stance context at time t: with the spring legs' rebound layer, or the total
+  // request (leg placement).
+  auto context = [&](double time, bool total) {
+    const Layer& L = layer_at(time);
+    const control::BodyController& b = model.spring_legs && !total
+                                           ? static_cast<const control::BodyController&>(*L.rebound)
+                                           : *L.pd;
+    return control::StanceContext{*L.scene, b, *L.legs};
+  };
+
+  auto stepper = ode::make_stepper(prs.solver, n);
+  ode::Vec y = mech.initial_state();
+
+  Run run{scene, model, sys, msys, result};
+  run.record = options.record_trajectory;
+  run.in_contact.assign(legs, false);
+  run.contact_start.assign(legs, Eigen::Vector2d::Zero());
+  run.push.assign(legs, Vector3d::UnitZ());
+  for (size_t i = 0; i < legs; ++i) run.push[i] = -model.direction[i];
+  Observer observer(run, sim.sample_interval, n);
+
+  ComHeightEvent touchdown(model, l);
+  ApexEvent apex(model);
+  ComHeightEvent fall_low(model, sim.fall_min_height);
+  TiltEvent fall_tilt(model, msys, sim.fall_max_tilt);
+  BottomEvent bottom(model);
+  const ode::EventFunction* flight_events[] = {&touchdown, &apex, &fall_low, &fall_tilt};
+  const ode::EventFunction* stance_events[] = {&apex, &fall_low, &fall_tilt};
+  const ode::EventFunction* armed_events[] = {&bottom, &fall_low, &fall_tilt};
+  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3, kBottom = 4 };
+  const int flight_ids[] = {kTouchdown, kApex, kFallLow, kFallTilt};
+  const int stance_ids[] = {kApex, kFallLow, kFallTilt};
+  const int armed_ids[] = {kBottom, kFallLow, kFallTilt};
+  // Spring legs: the actuators fire in the thrust phase, from the bottom of the
+  // stance (CoM velocity rising through zero) on, so a downward force lowers the
+  // takeoff speed and an upward one raises it (seed fig. 2.13).
+  bool armed = false;
+  std::vector<double> armed_force(legs, 0.0), armed_duration(legs, 0.0);
+
+  result.monitors.internal_stiffness =
+      mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
+  result.monitors.contact_stiffness =
+      model.ground >= 0 ? mech.surfaces[model.ground].stiffness : 0.0;
+  result.monitors.stiffness = model.stiffness;
+  const double total_mass = mech.total_mass();
+  result.monitors.energy_scale =
+      total_mass * g * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
+  const double balance0 = msys.energies(y).total();
+  const double blowup = 10.0 * result.monitors.energy_scale;
+
+  auto end_run = [&](reduced::RunStatus status, std::string reason) {
+    res.status = status;
+    res.reason = std::move(reason);
+  };
+  auto total_momentum = [&](const ode::Vec& ys) {
+    Vector3d p = Vector3d::Zero();
+    for (size_t j = 0; j < mech.masses.size(); ++j) p += ys.segment<3>(6 * j + 3);
+    return p;
+  };
+
+  reduced::StrideRecord current;
+  bool have_stride = false;
+  long touchdowns = 0, touchdown_events = 0;
+  Vector3d p_touchdown = Vector3d::Zero();
+  std::vector<double> leg_force(legs, 0.0), off_time(legs, 0.0);
+  std::vector<double> stride_force(legs, 0.0);
+  auto finish_stride = [&](double t_next) {
+    if (!have_stride) return;
+    if (t_next > current.t_touchdown) {
+      current.stride_time = t_next - current.t_touchdown;
+      current.duty_cycle = current.stance_duration / current.stride_time;
+    }
+    res.strides.push_back(current);
+    result.stride_actuator_force.push_back(stride_force);
+    result.stride_slip.push_back(run.stride_slip);
+    have_stride = false;
+  };
+
+  double t = 0.0;
+  size_t next_disturbance = 0;
+  stepper->reset(sys, t, y);
+  observer.start(y);
+  bool running = true;
+  while (running) {
+    double t_target = sim.duration;
+    if (next_disturbance < scene.disturbances.size()) {
+      t_target = std::min(t_target, scene.disturbances[next_disturbance].time);
+    }
+    if (run.stance) {
+      for (size_t i = 0; i < legs; ++i) {
+        if (leg_force[i] != 0.0) t_target = std::min(t_target, off_time[i]);
+      }
+    }
+    std::span<const ode::EventFunction* const> events =
+        armed        ? std::span<const ode::EventFunction* const>(armed_events)
+        : run.stance ? std::span<const ode::EventFunction* const>(stance_events)
+                     : std::span<const ode::EventFunction* const>(flight_events);
+    const int* ids = armed ? armed_ids : run.stance ? stance_ids : flight_ids;
+    ode::IntegrateResult r;
+    if (t_target > t) {
+      r = ode::integrate(sys, *stepper, t_target, events, prs.solver, &observer);
+    } else {
+      r.reason = ode::StopReason::kReachedEnd;
+      r.t = t;
+    }
+    t = r.t;
+    y = stepper->y();
+    switch (r.reason) {
+      case ode::StopReason::kStepSizeCollapse:
+        end_run(reduced::RunStatus::kDiverged, "step-size collapse at t = " + fmt(t) + " s");
+        running = false;
+        continue;
+      case ode::StopReason::kNonFinite:
+        end_run(reduced::RunStatus::kDiverged, "non-finite state at t = " + fmt(t) + " s");
+        running = false;
+        continue;
+      case ode::StopReason::kMaxSteps:
+        end_run(reduced::RunStatus::kDiverged, "step limit reached at t = " + fmt(t) + " s");
+        running = false;
+        continue;
+      default:
+        break;
+    }
+    const double balance =
+        msys.energies(y).total() + run.dissipated - run.work - result.monitors.hip_work;
+    const double drift = std::abs(balance - balance0);
+    if (!y.allFinite() || !std::isfinite(balance) || drift > blowup) {
+      end_run(reduced::RunStatus::kDiverged,
+              "energy blow-up at t = " + fmt(t) + " s: the balance drifted by " + fmt(drift) +
+                  " J (scale " + fmt(result.monitors.energy_scale) +
+                  " J); stiffness too high for the solver or the step too large");
+      break;
+    }
+    result.monitors.energy_drift = std::max(result.monitors.energy_drift, drift);
+    const int event = r.reason == ode::StopReason::kEvent ? ids[r.event_index] : -1;
+    if (event == kFallLow) {
+      end_run(reduced::RunStatus::kFell,
+              "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
+      break;
+    }
+    if (event == kFallTilt) {
+      end_run(reduced::RunStatus::kFell, "body tilted past " + fmt(sim.fall_max_tilt * 180 / M_PI) +
+                                             " deg at t = " + fmt(t) + " s");
+      break;
+    }
+    if (event == kApex) {
+      if (!run.stance && have_stride && !current.has_apex) {
+        current.has_apex = true;
+        current.apex_height = body_com(model, y).x.z();
+        // Everything the legs and the ground gave since touchdown (gravity removed).
+        current.P_delivered = total_momentum(y) - p_touchdown +
+                              Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));
+      }
+      if (!run.stance && model.spring_legs) {
+        // Foot vibration on the leg springs (free fall: the springs would be at rest).
+        const Com c = body_com(model, y);
+        double e = msys.energies(y).leg;
+        for (int f : model.foot) {
+          const Vector3d v = y.segment<3>(6 * f + 3) / mech.masses[f].mass - c.v;
+          e += 0.5 * mech.masses[f].mass * v.squaredNorm();
+        }
+        result.monitors.max_leg_vibration_energy =
+            std::max(result.monitors.max_leg_vibration_energy, e);
+      }
+      if (!run.stance && model.spring_legs && prs.hip_rotation) {
+        // Hip placement: plan the stance at the predicted (ballistic) touchdown and turn
+        // each leg along its total impulse; the foot moves with the leg (its energy
+        // change is hip work).
+        control::BodyState s = run.body_state(y);
+        const double dz = s.position.z() - l;
+        if (dz > 0.0) {
+          const double tf = std::sqrt(2.0 * dz / g);
+          s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
+          s.velocity.z() -= g * tf;
+          const control::StancePlan pred =
+              control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
+          const std::vector<Vector3d> u = leg_directions(pred, legs, prs.max_leg_angle);
+          const double e_before = msys.energies(y).total();
+          const pr::BodyFrame f = msys.frames(y)[model.body];
+          const Vector3d w = msys.body_omega(model.body, y);
+          for (size_t i = 0; i < legs; ++i) {
+            const int foot = model.foot[i];
+            const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, mech.surfaces[model.slide[i]].ghost};
+            const Vector3d hip = msys.node_position(ghost, y);
+            const Vector3d d_old = f.rotation * (-run.push[i]);
+            const Vector3d d_new = f.rotation * u[i];
+            const Vector3d xf = y.segment<3>(6 * foot);
+            const double ext = (xf - hip).dot(d_old);
+            const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
+                                  (f.com_velocity + w.cross(xf - f.com));
+            const Vector3d xn = hip + ext * d_new;
+            const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
+            y.segment<3>(6 * foot) = xn;
+            y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * vn;
+            mech.surfaces[model.slide[i]].direction = u[i];
+            run.push[i] = -u[i];
+          }
+          common_push = -u[0];
+          result.monitors.hip_work += msys.energies(y).total() - e_before;
+        }
+      }
+    } else if (event == kTouchdown) {
+      finish_stride(t);
+      ++touchdown_events;
+      if (touchdowns >= sim.max_strides) break;
+      const control::BodyState s = run.body_state(y);
+      const control::StancePlan plan = control::plan_stance(context(t, false), touchdowns, t, s);
+      current = reduced::StrideRecord{};
+      have_stride = true;
+      run.stride_slip = 0.0;
+      current.index = touchdowns++;
+      current.t_touchdown = t;
+      current.position = s.position;
+      current.velocity = s.velocity;
+      current.euler123 = s.euler123;
+      current.omega = s.omega;
+      current.setpoint =
+          scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
+      current.P_requested = plan.command.P_world;
+      current.H_requested = plan.command.H_body;
+      current.gravity_compensation = plan.gravity_compensation;
+      current.active_legs = plan.active_legs;
+      current.allocation = plan.allocation_status;
+      if (plan.allocation_status != control::AllocationStatus::kOk) {
+        ++res.warnings[plan.allocation_status == control::AllocationStatus::kLimited
+                           ? "allocation_limited"
+                           : "allocation_infeasible"];
+      }
+      p_touchdown = total_momentum(y);
+      // Leg controllers: a constant force along each leg for the stance duration T;
+      // with a force limit the pulse saturates, and with impulse feedback the actuator
+      // stays on until its delivered impulse reaches the allocation (seed 5.4).
+      const double T = prs.actuators ? plan.duration : 0.0;
+      double stance_end = t;
+      Vector3d H = Vector3d::Zero();
+      double peak = 0.0;
+      std::fill(leg_force.begin(), leg_force.end(), 0.0);
+      std::fill(armed_force.begin(), armed_force.end(), 0.0);
+      for (size_t i = 0; i < legs && T > 0.0 && i < plan.leg_impulse.size(); ++i) {
+        const Vector3d p = plan.leg_impulse[i];
+        double impulse = 0.0;  // signed along the push direction [N s]
+        if (model.spring_legs) {
+          impulse = p.dot(run.push[i]);
+        } else if (p.norm() > 0.0) {
+          run.push[i] = p.normalized();
+          impulse = p.norm();
+        }
+        if (impulse == 0.0) continue;
+        double f = impulse / T, duration = T;
+        if (prs.actuator_max_force > 0.0 && std::abs(f) > prs.actuator_max_force) {
+          f = std::copysign(prs.actuator_max_force, f);
+          if (prs.impulse_feedback) {
+            // The leg measures the net impulse it gives the body (its force minus its
+            // share s of the weight it was compensating for, shares in proportion to
+            // the legs' impulses) and stays on until that reaches its allocation net of
+            // compensation: F_max T' - s T' = p - s T.
+            double sum = 0.0;
+            for (const auto& q : plan.leg_impulse) sum += q.norm();
+            const double share =
+                sum > 0.0 ? plan.gravity_compensation / T * std::abs(impulse) / sum : 0.0;
+            const double net_rate = prs.actuator_max_force - share;
+            duration = net_rate > 0.0 ? (std::abs(impulse) - share * T) / net_rate
+                                      : std::abs(impulse) / prs.actuator_max_force;
+          }
+          ++res.warnings["actuator_saturated"];
+        }
+        leg_force[i] = f;
+        off_time[i] = t + duration;
+        armed_force[i] = f;
+        armed_duration[i] = duration;
+        stance_end = std::max(stance_end, off_time[i]);
+        peak = std::max(peak, std::abs(f));
+        H += model.hip[i].cross(f * duration * run.push[i]);
+      }
+      stride_force = leg_force;
+      current.stance_duration = stance_end - t;
+      current.peak_leg_force = peak;
+      current.H_delivered = H;
+      run.stance = stance_end > t;
+      if (run.stance && model.spring_legs) {
+        armed = true;  // fire at the bottom of the stance
+        std::fill(leg_force.begin(), leg_force.end(), 0.0);
+      }
+      sys.set_actuators(leg_force, run.push);
+    } else if (event == kBottom) {
+      armed = false;
+      double stance_end = t;
+      for (size_t i = 0; i < legs; ++i) {
+        leg_force[i] = armed_force[i];
+        off_time[i] = t + armed_duration[i];
+        if (leg_force[i] != 0.0) stance_end = std::max(stance_end, off_time[i]);
+      }
+      if (have_stride) current.stance_duration = stance_end - current.t_touchdown;
+      sys.set_actuators(leg_force, run.push);
+    } else {
+      // Reached t_target: an actuator switching off, a disturbance, or the end.
+      if (run.stance && !armed) {
+        bool on = false;
+        for (size_t i = 0; i < legs; ++i) {
+          if (leg_force[i] != 0.0 && off_time[i] <= t * (1.0 + 1e-14) + 1e-14) leg_force[i] = 0.0;
+          on = on || leg_force[i] != 0.0;
+        }
+        sys.set_actuators(leg_force, run.push);
+        run.stance = on;
+      }
+      while (next_disturbance < scene.disturbances.size() &&
+             scene.disturbances[next_disturbance].time <= t) {
+        const auto& d = scene.disturbances[next_disturbance++];
+        // Linear impulse shared by the four body masses; angular impulse as the
+        // rigid velocity change dw = I^-1 H (body frame).
+        const pr::BodyFrame f = msys.frames(y)[model.body];
+        const Vector3d dw = f.rotation * (scene.body.inertia.inverse() * d.angular_impulse);
+        const auto& b = mech.bodies[model.body];
+        const double e_before = msys.energies(y).total();
+        for (int k = 0; k < 4; ++k) {
+          const int j = b.first_mass + k;
+          const Vector3d arm = y.segment<3>(6 * j) - f.com;
+          y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + mech.masses[j].mass * dw.cross(arm);
+        }
+        result.monitors.hip_work += msys.energies(y).total() - e_before;  // external work
+      }
+      if (t >= sim.duration) running = false;
+    }
+    if (running) stepper->reset(sys, t, y);
+  }
+  if (have_stride && !current.has_apex) {
+    current.P_delivered = total_momentum(y) - p_touchdown +
+                          Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));
+  }
+  finish_stride(-1.0);
+
+  res.t_end = t;
+  const control::BodyState s = run.body_state(y);
+  res.final_position = s.position;
+  res.final_velocity = s.velocity;
+  res.final_euler123 = s.euler123;
+  res.final_omega = s.omega;
+  res.final_attitude = s.attitude;
+  if (res.status == reduced::RunStatus::kCompleted) {
+    res.reason = touchdowns >= sim.max_strides && t < sim.duration
+                     ? "reached " + std::to_string(sim.max_strides) + " strides"
+                     : "reached t = " + fmt(t) + " s";
+  }
+  // Only finite samples are kept (a diverged run keeps what came before).
+  while (!res.trajectory.empty() && !(res.trajectory.back().position.allFinite() &&
+                                      std::isfinite(result.samples.back().energies.total()))) {
+    res.trajectory.pop_back();
+    result.samples.pop_back();
+  }
+  auto finite_or = [](double& x) {
+    if (!std::isfinite(x)) x = 1e300;
+  };
+  finite_or(result.monitors.energy_drift);
+  finite_or(result.monitors.max_strain);
+  finite_or(result.monitors.max_penetration);
+  finite_or(result.monitors.max_slip);
+  if (!res.final_position.allFinite()) {
+    res.final_position.setZero();
+    res.final_velocity.setZero();
+    res.final_euler123.setZero();
+    res.final_omega.setZero();
+  }
+  result.monitors.zero_length_triggers = msys.zero_length_triggers();
+  res.cost.solver = stepper->counters();
+  res.cost.touchdowns = touchdown_events;
+  res.cost.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace pronk::robot
