@@ -183,9 +183,10 @@ void write_history(const std::string& dir, const JournalContents& j, const Evalu
            csv_num(r.result.cost) + "," + (feasible ? "1" : "0") + "," +
            (std::isfinite(best) ? csv_num(best) : std::string(""));
     const auto values = physical_values(ev.config().parameters, r.x);
-    for (double v : values) out += "," + csv_num(v);
-    for (double g : r.result.constraints) out += "," + csv_num(g);
-    out += "," + csv_num(r.line.value("spectral_radius", 0.0)) + "\n";
+    // Appended piecewise: `"," + std::string` trips GCC 12's false -Wrestrict (bug 105651).
+    for (double v : values) out.append(",").append(csv_num(v));
+    for (double g : r.result.constraints) out.append(",").append(csv_num(g));
+    out.append(",").append(csv_num(r.line.value("spectral_radius", 0.0))).append("\n");
   }
   io::write_file_atomic(dir + "/history.csv", out);
 }
