@@ -72,6 +72,7 @@ struct FidelityPoint {
   double spectral_radius = 0.0;         ///< of the stride map at its fixed point
   bool stable = false;                  ///< spectral radius < 1 with an orbit found
   double fixed_point_vs_impulse = 0.0;  ///< |s* - s*_impulse|_inf
+  std::vector<double> apexes;           ///< apex heights of strides 2.. [m] (not written out)
 };
 
 /// A rung of the ladder: runs the robot scene (its pulse settings chosen by the caller) in

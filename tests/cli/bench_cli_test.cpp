@@ -225,7 +225,7 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     }
   }
 
-  SECTION("fidelity ladder: impulse and pulse run and are stable; the pseudo-rigid rung waits") {
+  SECTION("fidelity ladder: impulse and pulse run and are stable; pseudo-rigid skipped in quick") {
     std::map<std::string, json> by;
     for (const auto& p : doc["fidelity_ladder"]) by[p["model"].get<std::string>()] = p;
     REQUIRE(by.count("impulse"));
@@ -239,6 +239,7 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     CHECK(by["impulse"]["mean_apex_m"].get<double>() == Approx(0.45).margin(0.01));
     CHECK(by["pulse"]["apex_rms_vs_impulse_m"].get<double>() < 0.02);
     CHECK(by["pseudo_rigid"]["available"] == false);
+    CHECK(by["pseudo_rigid"]["status"] == "skipped");
   }
 
   SECTION("quad hopper drop: undamped, so the energy balance holds and no apex exceeds the start") {
