@@ -190,14 +190,14 @@ std::string executable_dir() {
 
 /// Runs a peer executable beside pronk; returns its JSON, or {available: false}.
 json run_peer(const std::string& name, const std::string& what, const BenchArgs& args, int repeat,
-              bool* failed) {
+              bool* failed, const std::string& extra_args = "") {
   const std::string exe = executable_dir() + "/" + name;
   if (access(exe.c_str(), X_OK) != 0) {
     return {{"available", false},
             {"reason", name + " not built: " + what + " was not found when pronk was configured"}};
   }
-  const std::string cmd =
-      "'" + exe + "'" + (args.quick ? " --quick" : "") + " --repeat " + std::to_string(repeat);
+  const std::string cmd = "'" + exe + "'" + (args.quick ? " --quick" : "") + " --repeat " +
+                          std::to_string(repeat) + extra_args;
   FILE* f = popen(cmd.c_str(), "r");
   if (!f) {
     *failed = true;
@@ -389,7 +389,11 @@ int run_bench(const BenchArgs& args) {
   json mujoco = cvode;
   if (!args.no_peers) {
     progress(args, "peer: SUNDIALS CVODE");
-    cvode = run_peer("pronk_peer_cvode", "libsundials-dev", args, c.repeat, &peer_failed);
+    // CVODE also integrates pronk's quad hopper drop: the same mechanism, from a file.
+    const std::string quad = args.out_dir + "/quad_hopper_mechanism.json";
+    io::write_file_atomic(quad, bench::quad_hopper_mechanism(c.quick ? 2.0 : 10.0).dump(2) + "\n");
+    cvode = run_peer("pronk_peer_cvode", "libsundials-dev", args, c.repeat, &peer_failed,
+                     " --mechanism '" + quad + "' --drop 0.15");
     progress(args, "peer: MuJoCo");
     mujoco = run_peer("pronk_peer_mujoco", "libmujoco-dev", args, c.repeat, &peer_failed);
   }

@@ -202,6 +202,12 @@ def section(d, figdir):
         rows.append([f"pronk RODAS4 {r['norm']} norm", f"tol {g(r['tol'])}", r["status"],
                      ms(r["cost_per_sim_s"]), r["steps"], g(r["energy_error_rel"]),
                      g(r["first_bounce_energy_loss_rel"]), g(r["apex_height_error_rel"]), r["bounces"]])
+    if cvd.get("available"):
+        for r in cvd.get("quad_hopper", []):
+            rows.append(["CVODE BDF (pronk's RHS + Jacobian)", f"tol {g(r['tol'])}", r["status"],
+                         ms(r["cost_per_sim_s"]), r["steps"], g(r["energy_error_rel"]),
+                         g(r["first_bounce_energy_loss_rel"]), g(r["apex_height_error_rel"]),
+                         r["bounces"]])
     mjd = d["peers"]["mujoco"]
     if mjd.get("available"):
         for r in mjd["runs"]:

@@ -262,6 +262,15 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
         CHECK(p["steps"].get<long>() > 0);
       }
       CHECK(doc["headline"]["satellite"]["cvode_over_rodas4"].get<double>() > 0);
+      // The quad hopper drop from the same mechanism file: completes and bounces (its
+      // accuracy is what the bench measures: BDF without contact events gains energy).
+      REQUIRE(cv.contains("quad_hopper"));
+      for (const auto& p : cv["quad_hopper"]) {
+        INFO(p.dump());
+        CHECK(p["status"] == "completed");
+        CHECK(p["bounces"].get<int>() >= 1);
+        CHECK(std::isfinite(p["energy_error_rel"].get<double>()));
+      }
     }
     const json& mj = doc["peers"]["mujoco"];
     if (mj["available"] == true) {
