@@ -51,8 +51,9 @@ class Loader {
       s.finish();
     } else {
       r.optional("simulation");
-      JsonReader s(json::object(), file_, "/simulation");
-      read_simulation(s, json::object(), &m.simulation, &set);
+      const json empty = json::object();  // the reader keeps a reference: must outlive it
+      JsonReader s(empty, file_, "/simulation");
+      read_simulation(s, empty, &m.simulation, &set);
     }
 
     if (r.has("masses")) {

@@ -92,6 +92,15 @@ TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli]
 }
 
 #ifdef PRONK_MPIEXEC
+/// `mpirun -np 2` as root on a 2-core machine. OpenMPI 4.1 leaks in its own start-up and
+/// in the plugins it unloads, which LeakSanitizer (in the sanitizer build) reports as an
+/// exit status of 1: leak checking is switched off for the ranks only (-x passes it on);
+/// address and undefined-behaviour checks stay on, and every other test checks leaks.
+std::string mpirun_np2() {
+  return "ASAN_OPTIONS=detect_leaks=0 " + std::string(PRONK_MPIEXEC) +
+         " -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ";
+}
+
 TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][mpi]") {
   Dir d;
   { std::ofstream(d.path + "/s.json") << pronk::test::tiny_map_document(4, 2, 5.0).dump(); }
@@ -99,9 +108,9 @@ TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][
       run(pronk_exe() + " map " + d.path + "/s.json -q --threads 2 --out " + d.path + "/threads",
           d.path) == 0);
   std::string err;
-  const int rc = run(std::string(PRONK_MPIEXEC) + " --allow-run-as-root --oversubscribe -np 2 " +
-                         pronk_exe() + " map " + d.path + "/s.json --out " + d.path + "/mpi",
-                     d.path, &err);
+  const int rc =
+      run(mpirun_np2() + pronk_exe() + " map " + d.path + "/s.json --out " + d.path + "/mpi",
+          d.path, &err);
   INFO(err);
   REQUIRE(rc == 0);
   CHECK(slurp(d.path + "/stdout.txt").find("on 2 MPI ranks") != std::string::npos);
@@ -111,9 +120,8 @@ TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][
     CHECK(slurp(d.path + "/threads/" + f) == slurp(d.path + "/mpi/" + f));
   }
   // Bad input under MPI: rank 0 reports it once, every rank exits.
-  CHECK(run(std::string(PRONK_MPIEXEC) + " --allow-run-as-root --oversubscribe -np 2 " +
-                pronk_exe() + " map " + d.path + "/s.json --set /trials/cuont=1",
-            d.path, &err) == 2);
+  CHECK(run(mpirun_np2() + pronk_exe() + " map " + d.path + "/s.json --set /trials/cuont=1", d.path,
+            &err) == 2);
   // (mpirun adds its own note about the non-zero exit code.)
   const size_t first = err.find("pronk: error: ");
   CHECK(first != std::string::npos);
