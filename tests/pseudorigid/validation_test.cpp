@@ -131,9 +131,14 @@ TEST_CASE("case 11: large-amplitude pendulum period vs the elliptic-integral per
     m.masses[0].position *= 1.0 + m.masses[0].mass * g * std::cos(amp) / (rod.stiffness * len);
     m.connections.push_back(rod);
     m.simulation.t_end = 4.0 * 4.0 * std::sqrt(len / g) * elliptic_k(std::sin(amp / 2)) + 0.1;
-    m.simulation.output_interval = 1e-4;
+    // Crossings are interpolated linearly between samples; at the bottom x'' = 0, so
+    // 1 ms samples locate them to ~1e-9 s.
+    m.simulation.output_interval = 1e-3;
     m.simulation.solver.rtol = 1e-10;
     m.simulation.solver.atol = 1e-11;
+    // RADAU5: the stiff rod swings (rotates), which RODAS4 resolves with ~50x more steps
+    // (docs/pseudorigid.md); both solvers are validated, this case with the faster one.
+    m.simulation.solver.method = pronk::ode::Method::kRadau5;
     const RunSummary r = simulate(m);
     INFO(r.reason);
     REQUIRE(r.status == RunStatus::kCompleted);
@@ -147,7 +152,8 @@ TEST_CASE("case 11: large-amplitude pendulum period vs the elliptic-integral per
     REQUIRE(crossings.size() >= 4);
     const double period = (crossings[3] - crossings[0]) / 3.0;
     const double exact = 4.0 * std::sqrt(len / g) * elliptic_k(std::sin(amp / 2));
-    INFO("amplitude " << amp_deg << " deg: period " << period << " exact " << exact);
+    INFO("amplitude " << amp_deg << " deg: period " << period << " exact " << exact << ", "
+                      << r.counters.steps_accepted << " steps");
     CHECK(std::abs(period - exact) / exact < 1e-6);
   }
 }
