@@ -5,6 +5,7 @@
 // drift with the barycentric and the minimum-norm ghost transfer.
 // Prints one JSON document; wall times are medians of 3 runs.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -20,11 +21,14 @@ namespace ts = pronk::pseudorigid::test_scenes;
 
 namespace {
 
+/// One satellite run; `tol` is rtol = atol of the adaptive methods, or the fixed step h [s] of
+/// the fixed-step methods (verlet).
 void run(const char* group, double k, pronk::ode::Method method, double tol, ErrorNorm norm,
          bool* first) {
   Mechanism m = ts::satellite(k, 20.0);
   m.simulation.solver.method = method;
   m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+  if (!pronk::ode::is_adaptive(method)) m.simulation.solver.h_fixed = tol;
   m.simulation.error_norm = norm;
   std::vector<double> walls;
   RunSummary r;
@@ -83,12 +87,20 @@ int main() {
   for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     run("tolerance_radau5", 1e6, Method::kRadau5, tol, ErrorNorm::kState, &first);
   }
+  // Velocity Verlet: "tol" is the fixed step [s]; stable for h < 2 / omega_max (~1e-3 s here).
+  for (double h : {8e-4, 5e-4, 2.5e-4, 1e-4}) {
+    run("verlet", 1e6, Method::kVerlet, h, ErrorNorm::kState, &first);
+  }
+  run("explicit", 1e6, Method::kDopri5, 1e-5, ErrorNorm::kState, &first);
   run("explicit", 1e6, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
   run("explicit", 1e6, Method::kDopri5, 1e-8, ErrorNorm::kState, &first);
   for (double k : {1e4, 1e5, 1e6, 1e7, 1e8}) {
     run("stiffness", k, Method::kRodas4, 1e-6, ErrorNorm::kState, &first);
     run("stiffness_dopri5", k, Method::kDopri5, 1e-6, ErrorNorm::kState, &first);
     run("stiffness_radau5", k, Method::kRadau5, 1e-8, ErrorNorm::kState, &first);
+    // Half the stability limit 2 / omega_max, omega_max ~ 2 sqrt(k / m) = 2000 rad/s at 1e6.
+    run("stiffness_verlet", k, Method::kVerlet, 5e-4 * std::sqrt(1e6 / k), ErrorNorm::kState,
+        &first);
   }
   for (double tol : {1e-6, 1e-8}) {
     four_leg(GhostTransfer::kBarycentric, tol, &first);

@@ -36,6 +36,16 @@ class OdeSystem {
                             double /*rtol*/, double /*atol*/) const {
     return 0.0;
   }
+
+  /// Optional mechanical structure for the symplectic stepper ("verlet"): the states split
+  /// into positions q and momenta p with dq/dt = G(p) depending on the momenta only (not on q
+  /// or t) and dp/dt = F(t, q, p), the rest of f.
+  virtual bool has_mechanical_split() const { return false; }
+  /// Writes 1 for momentum states and 0 for position states into mask (sized dimension()).
+  virtual void momentum_mask(Vec& /*mask*/) const {}
+  /// Writes G(p) into the position entries of dydt; leaves its momentum entries unchanged.
+  /// Must be much cheaper than rhs() (the stepper calls it twice per step).
+  virtual void position_rate(const Vec& /*y*/, Vec& /*dydt*/) const {}
 };
 
 /// A scalar event function g(t, y); an event fires when g crosses zero in the

@@ -20,9 +20,12 @@ enum class Method {
   kRodas4,  ///< Rosenbrock RODAS4 (Hairer-Wanner), L-stable, adaptive, 3rd-order dense output
   kRadau5,  ///< Radau IIA order 5 (Hairer-Wanner RADAU5), fully implicit (Newton), L-stable,
             ///< adaptive, collocation dense output; for stiff rotating springs
+  kVerlet,  ///< velocity Verlet (Stormer-Verlet, kick-drift-kick), fixed step, order 2,
+            ///< symplectic: one RHS per step, no energy drift on conservative mechanisms;
+            ///< only for systems with a mechanical split (pseudo-rigid mechanisms)
 };
 
-/// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5".
+/// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "verlet".
 std::string_view to_string(Method m);
 /// Parses the names of to_string; returns false on an unknown name.
 bool parse_method(std::string_view name, Method* out);

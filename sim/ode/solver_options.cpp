@@ -20,13 +20,15 @@ std::string_view to_string(Method m) {
       return "rodas4";
     case Method::kRadau5:
       return "radau5";
+    case Method::kVerlet:
+      return "verlet";
   }
   return "unknown";
 }
 
 bool parse_method(std::string_view name, Method* out) {
   for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
-                   Method::kRadau5}) {
+                   Method::kRadau5, Method::kVerlet}) {
     if (name == to_string(m)) {
       *out = m;
       return true;
@@ -63,7 +65,7 @@ bool positive_finite(std::string* error, const char* field, double value) {
 bool SolverOptions::validate(std::string* error) const {
   if (to_string(method) == "unknown") {
     return fail(error, "method", static_cast<double>(static_cast<int>(method)),
-                "must be one of euler, rk2, rk4, dopri5, rodas4, radau5");
+                "must be one of euler, rk2, rk4, dopri5, rodas4, radau5, verlet");
   }
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;

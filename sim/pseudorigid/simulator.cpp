@@ -70,6 +70,11 @@ class SolverView final : public ode::OdeSystem {
     sys_.jacobian(t, y, j);
   }
   bool autonomous() const override { return sys_.autonomous(); }
+  bool has_mechanical_split() const override { return sys_.has_mechanical_split(); }
+  void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
+  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
+    sys_.position_rate(y, dydt);
+  }
   bool has_error_norm() const override { return true; }
   double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
                     double atol) const override {
@@ -189,6 +194,7 @@ RunSummary simulate(const Mechanism& m) {
       // Dissipation and actuator work over [ta, te] (te <= tb) by Gauss-Legendre on the
       // step's dense output.
       auto flows = [&](double te, double* d, double* w) {
+        if (!sys.has_power_flows()) return;
         for (int q = 0; q < 3; ++q) {
           stepper->dense(ta + gl_s[q] * (te - ta), yq);
           const PowerFlows p = sys.power(yq);

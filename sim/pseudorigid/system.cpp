@@ -312,6 +312,17 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   }
 }
 
+void MechanismSystem::momentum_mask(ode::Vec& mask) const {
+  const int nm = static_cast<int>(m_.masses.size());
+  mask.setZero(6 * nm);
+  for (int j = 0; j < nm; ++j) mask.segment<3>(6 * j + 3).setOnes();
+}
+
+void MechanismSystem::position_rate(const ode::Vec& y, ode::Vec& dydt) const {
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
+}
+
 // ---------------------------------------------------------------------------
 // Jacobian
 
@@ -565,7 +576,7 @@ StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
 }
 
 std::vector<double> MechanismSystem::surface_forces(const ode::Vec& y) const {
-  update_frames(y, false);
+  if (rhs_needs_frames_) update_frames(y, false);
   std::vector<double> out;
   for (const Surface& s : m_.surfaces) {
     double f = 0.0;

@@ -38,6 +38,11 @@ class MechanismSystem final : public ode::OdeSystem {
   double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
                     double atol) const override;
 
+  /// y = (x_j, p_j) per mass: dx/dt = p/m depends on the momenta only (method verlet).
+  bool has_mechanical_split() const override { return true; }
+  void momentum_mask(ode::Vec& mask) const override;
+  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
+
   /// Time-windowed forces (body forces, impulse actuators) are on or off for a
   /// whole integration segment: the simulator stops at every switch time and
   /// calls this with a time inside the next segment [s].
@@ -53,6 +58,8 @@ class MechanismSystem final : public ode::OdeSystem {
 
   Energies energies(const ode::Vec& y) const;
   PowerFlows power(const ode::Vec& y) const;
+  /// False when nothing dissipates or does work: power() is then zero everywhere.
+  bool has_power_flows() const { return has_power_flows_; }
   StateMonitors monitors(const ode::Vec& y) const;
   /// Largest contact force magnitude of each surface at y [N].
   std::vector<double> surface_forces(const ode::Vec& y) const;

@@ -31,6 +31,11 @@ class RobotSystem final : public ode::OdeSystem {
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }
   bool has_error_norm() const override { return sys_.has_error_norm(); }
+  bool has_mechanical_split() const override { return true; }
+  void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
+  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
+    sys_.position_rate(y, dydt);
+  }
   double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
                     double atol) const override {
     return sys_.error_norm(err, y0, y1, rtol, atol);

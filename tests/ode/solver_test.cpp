@@ -123,6 +123,7 @@ OrderCase order_case(Method m) {
       return {5.0, {40, 80, 160}};
     case Method::kRodas4:  // stiff solvers: rosenbrock_test.cpp, radau5_test.cpp
     case Method::kRadau5:
+    case Method::kVerlet:  // mechanical systems only: verlet_test.cpp
       break;
   }
   return {};
@@ -157,6 +158,7 @@ long stages(Method m) {
       return 6;
     case Method::kRodas4:  // not part of this generic suite
     case Method::kRadau5:
+    case Method::kVerlet:
       break;
   }
   return 0;

@@ -112,6 +112,36 @@ TEST_CASE("case 10: satellite precession, pseudo-rigid vs Euler's equations vs a
   }
 }
 
+TEST_CASE("case 10 with velocity Verlet: the analytic precession at a fixed step, no drift",
+          "[pseudorigid][validation]") {
+  // k = 1e6 N/m: the fastest internal mode is ~2000 rad/s, so Verlet is stable below
+  // h = 1e-3 s. Its error is O(h^2) in the rigid motion and bounded in the energy.
+  double previous_energy = 1e300;
+  for (double h : {5e-4, 2.5e-4}) {
+    Mechanism m = ts::satellite(1e6, 20.0);
+    m.simulation.solver.method = pronk::ode::Method::kVerlet;
+    m.simulation.solver.h_fixed = h;
+    const RunSummary r = simulate(m);
+    REQUIRE(r.status == RunStatus::kCompleted);
+    const double e = omega_error(m, r);
+    const double drift = r.energy_drift / r.energy_scale;
+    INFO("h " << h << ": omega error " << e << ", energy drift " << drift);
+    // The model error of k = 1e6 (strain 1.8e-6) bounds the omega error from below.
+    CHECK(e < 1e-5);
+    CHECK(r.counters.rhs_evaluations == r.counters.steps_accepted + 1);
+    CHECK(drift < 1e-6);
+    CHECK(drift < 0.5 * previous_energy);  // O(h^2): halving h divides it by ~4
+    previous_energy = drift;
+  }
+  // Beyond the stability limit (omega h > 2) the run ends as diverged, not as physics.
+  Mechanism m = ts::satellite(1e6, 20.0);
+  m.simulation.solver.method = pronk::ode::Method::kVerlet;
+  m.simulation.solver.h_fixed = 1.5e-3;
+  const RunSummary r = simulate(m);
+  CHECK(r.status == RunStatus::kDiverged);
+  CHECK(r.reason.find("stability limit") != std::string::npos);
+}
+
 TEST_CASE("case 11: large-amplitude pendulum period vs the elliptic-integral period",
           "[pseudorigid][validation]") {
   for (double amp_deg : {10.0, 150.0}) {

@@ -1,0 +1,209 @@
+// Velocity Verlet (method "verlet") against closed-form references: second order,
+// the exactly conserved modified energy of the harmonic oscillator (the signature of
+// a symplectic method), exact angular momentum under a central force, the stability
+// limit omega h = 2, second order with velocity-dependent forces, dense output, and
+// a clear error for systems without positions and momenta.
+#include <cmath>
+#include <stdexcept>
+
+#include <catch2/catch.hpp>
+
+#include "sim/ode/solver.hpp"
+
+namespace {
+
+using pronk::ode::integrate;
+using pronk::ode::make_stepper;
+using pronk::ode::Method;
+using pronk::ode::OdeSystem;
+using pronk::ode::SolverOptions;
+using pronk::ode::Vec;
+
+/// Damped oscillator m x'' = -k x - c x' as (x [m], p [N s]).
+class MassSpring final : public OdeSystem {
+ public:
+  MassSpring(double m, double k, double c) : m_(m), k_(k), c_(c) {}
+  int dimension() const override { return 2; }
+  void rhs(double, const Vec& y, Vec& dydt) const override {
+    dydt[0] = y[1] / m_;
+    dydt[1] = -k_ * y[0] - c_ * y[1] / m_;
+  }
+  bool has_mechanical_split() const override { return true; }
+  void momentum_mask(Vec& mask) const override {
+    mask.resize(2);
+    mask << 0.0, 1.0;
+  }
+  void position_rate(const Vec& y, Vec& dydt) const override { dydt[0] = y[1] / m_; }
+
+  /// Exact x(t) from x(0) = 1, p(0) = 0 (underdamped) [m].
+  double exact(double t) const {
+    const double zeta = c_ / (2.0 * std::sqrt(k_ * m_));
+    const double w0 = std::sqrt(k_ / m_);
+    const double wd = w0 * std::sqrt(1.0 - zeta * zeta);
+    return std::exp(-zeta * w0 * t) * (std::cos(wd * t) + zeta * w0 / wd * std::sin(wd * t));
+  }
+
+ private:
+  double m_, k_, c_;  ///< [kg], [N/m], [N s/m]
+};
+
+/// A unit mass in the plane under the central force -r / |r|^3 (Kepler): (x, y, px, py).
+class Kepler final : public OdeSystem {
+ public:
+  int dimension() const override { return 4; }
+  void rhs(double, const Vec& y, Vec& dydt) const override {
+    const double r3 = std::pow(y[0] * y[0] + y[1] * y[1], 1.5);
+    dydt << y[2], y[3], -y[0] / r3, -y[1] / r3;
+  }
+  bool has_mechanical_split() const override { return true; }
+  void momentum_mask(Vec& mask) const override {
+    mask.resize(4);
+    mask << 0.0, 0.0, 1.0, 1.0;
+  }
+  void position_rate(const Vec& y, Vec& dydt) const override { dydt.head<2>() = y.tail<2>(); }
+};
+
+/// x' = -x: no positions and momenta.
+class Decay final : public OdeSystem {
+ public:
+  int dimension() const override { return 1; }
+  void rhs(double, const Vec& y, Vec& dydt) const override { dydt[0] = -y[0]; }
+};
+
+SolverOptions verlet(double h) {
+  SolverOptions o;
+  o.method = Method::kVerlet;
+  o.h_fixed = h;
+  return o;
+}
+
+/// |x(t_end) - exact| of the oscillator with step h.
+double oscillator_error(const MassSpring& sys, double h, double t_end) {
+  const SolverOptions o = verlet(h);
+  auto s = make_stepper(o, 2);
+  Vec y(2);
+  y << 1.0, 0.0;
+  s->reset(sys, 0.0, y);
+  integrate(sys, *s, t_end, {}, o);
+  return std::abs(s->y()[0] - sys.exact(t_end));
+}
+
+}  // namespace
+
+TEST_CASE("verlet is second order, also with a velocity-dependent force", "[ode][verlet]") {
+  for (double c : {0.0, 0.3}) {
+    const MassSpring sys(2.0, 50.0, c);  // omega = 5 rad/s
+    const double e1 = oscillator_error(sys, 0.01, 3.0);
+    const double e2 = oscillator_error(sys, 0.005, 3.0);
+    const double order = std::log2(e1 / e2);
+    INFO("damping " << c << ": errors " << e1 << ", " << e2 << ", order " << order);
+    CHECK(order > 1.9);
+    CHECK(order < 2.1);
+  }
+}
+
+TEST_CASE("verlet conserves the harmonic oscillator's modified energy exactly", "[ode][verlet]") {
+  // Velocity Verlet maps (x, p) linearly with determinant 1 and conserves
+  // H_h = p^2 / 2m + k x^2 / 2 (1 - (omega h / 2)^2) exactly; the true energy only
+  // oscillates, by at most (omega h)^2 / (4 - (omega h)^2) of it, and never drifts.
+  const double m = 0.5, k = 2e4, h = 2e-3;  // omega h = 0.4
+  const double wh = std::sqrt(k / m) * h;
+  const MassSpring sys(m, k, 0.0);
+  const SolverOptions o = verlet(h);
+  auto s = make_stepper(o, 2);
+  Vec y(2);
+  y << 0.01, 0.0;
+  s->reset(sys, 0.0, y);
+  auto modified = [&](const Vec& v) {
+    return v[1] * v[1] / (2 * m) + 0.5 * k * v[0] * v[0] * (1 - wh * wh / 4);
+  };
+  auto energy = [&](const Vec& v) { return v[1] * v[1] / (2 * m) + 0.5 * k * v[0] * v[0]; };
+  const double h0 = modified(y), e0 = energy(y);
+  double worst_modified = 0.0, worst_energy = 0.0;
+  for (int i = 0; i < 100000; ++i) {
+    REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);
+    worst_modified = std::max(worst_modified, std::abs(modified(s->y()) - h0) / h0);
+    worst_energy = std::max(worst_energy, std::abs(energy(s->y()) - e0) / e0);
+  }
+  CHECK(worst_modified < 1e-11);
+  CHECK(worst_energy <= wh * wh / (4 - wh * wh) * (1 + 1e-9));
+  CHECK(worst_energy > 0.5 * wh * wh / (4 - wh * wh));  // the bound is attained, not loose
+  CHECK(s->counters().rhs_evaluations == 100001);       // one RHS per step
+}
+
+TEST_CASE("verlet conserves angular momentum exactly under a central force", "[ode][verlet]") {
+  const Kepler sys;
+  const SolverOptions o = verlet(0.01);
+  auto s = make_stepper(o, 4);
+  Vec y(4);
+  y << 1.0, 0.0, 0.0, 1.2;  // an ellipse with eccentricity 0.44
+  s->reset(sys, 0.0, y);
+  const double l0 = y[0] * y[3] - y[1] * y[2];
+  const double e0 = 0.5 * y.tail<2>().squaredNorm() - 1.0 / y.head<2>().norm();
+  double worst_l = 0.0, worst_e = 0.0;
+  for (int i = 0; i < 20000; ++i) {  // ~ 30 orbits
+    REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);
+    const Vec& v = s->y();
+    worst_l = std::max(worst_l, std::abs(v[0] * v[3] - v[1] * v[2] - l0));
+    worst_e = std::max(worst_e,
+                       std::abs(0.5 * v.tail<2>().squaredNorm() - 1.0 / v.head<2>().norm() - e0));
+  }
+  CHECK(worst_l < 1e-12);
+  // Energy: bounded O(h^2) oscillation (no secular drift over 30 orbits).
+  CHECK(worst_e < 1e-3 * std::abs(e0));
+}
+
+TEST_CASE("verlet is stable below omega h = 2 and grows without bound above", "[ode][verlet]") {
+  const MassSpring sys(1.0, 1e6, 0.0);  // omega = 1000 rad/s
+  for (const double wh : {1.95, 2.05}) {
+    const SolverOptions o = verlet(wh / 1000.0);
+    auto s = make_stepper(o, 2);
+    Vec y(2);
+    y << 1.0, 0.0;
+    s->reset(sys, 0.0, y);
+    double peak = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+      s->step(sys, 1e9);
+      peak = std::max(peak, std::abs(s->y()[0]));
+    }
+    INFO("omega h = " << wh << ": peak |x| " << peak);
+    if (wh < 2.0) {
+      // Bounded by the modified-energy ellipse: |x| <= 1 / sqrt(1 - (omega h / 2)^2).
+      CHECK(peak <= 1.0 / std::sqrt(1.0 - wh * wh / 4.0) * (1 + 1e-9));
+    } else {
+      CHECK(peak > 1e10);
+    }
+  }
+}
+
+TEST_CASE("verlet dense output interpolates to third order inside a step", "[ode][verlet]") {
+  const MassSpring sys(1.0, 1.0, 0.0);  // x = cos t
+  const SolverOptions o = verlet(0.05);
+  auto s = make_stepper(o, 2);
+  Vec y(2);
+  y << 1.0, 0.0;
+  s->reset(sys, 0.0, y);
+  for (int i = 0; i < 10; ++i) s->step(sys, 1e9);
+  Vec ym;
+  const double tm = 0.5 * (s->t_prev() + s->t());
+  s->dense(tm, ym);
+  // Step error O(h^3) of the method plus the Hermite error O(h^4).
+  CHECK(std::abs(ym[0] - std::cos(tm)) < 1e-3);
+  s->dense(s->t(), ym);
+  CHECK(ym[0] == s->y()[0]);
+}
+
+TEST_CASE("verlet refuses a system without positions and momenta", "[ode][verlet]") {
+  const Decay sys;
+  auto s = make_stepper(verlet(0.1), 1);
+  Vec y(1);
+  y << 1.0;
+  CHECK_THROWS_AS(s->reset(sys, 0.0, y), std::invalid_argument);
+  SolverOptions o = verlet(0.1);
+  std::string err;
+  CHECK(o.validate(&err));
+  Method m;
+  CHECK(pronk::ode::parse_method("verlet", &m));
+  CHECK(m == Method::kVerlet);
+  CHECK_FALSE(pronk::ode::is_adaptive(m));
+}
