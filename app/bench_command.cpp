@@ -262,6 +262,17 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
   if (rodas && dopri) h["satellite"]["dopri5_over_rodas4"] = dopri->cpu_s / rodas->cpu_s;
   h["satellite"]["anchor_cvode_issue3_s"] = 0.35;
   if (rodas) h["satellite"]["anchor_over_rodas4"] = 0.35 / rodas->cpu_s;
+  // The fastest pronk setting of any solver within the limit (issue 3's target is pronk's).
+  const WorkPoint* fastest = nullptr;
+  for (const char* solver : {"rodas4", "radau5", "dopri5", "rk4", "verlet"}) {
+    const WorkPoint* p = fastest_within(sat, "satellite", solver, 1e6, limit);
+    if (p && (!fastest || p->cpu_s < fastest->cpu_s)) fastest = p;
+  }
+  h["satellite"]["fastest"] = point_brief(fastest);
+  if (fastest) {
+    h["satellite"]["fastest"]["h"] = fastest->h;
+    h["satellite"]["anchor_over_fastest"] = 0.35 / fastest->cpu_s;
+  }
   if (cvode.value("available", false) && rodas) {
     double best = -1;
     json best_run;
@@ -276,6 +287,7 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
       h["satellite"]["cvode"] = best_run;
       h["satellite"]["cvode_over_rodas4"] = best / rodas->cpu_s;
       h["satellite"]["target_cvode_over_rodas4"] = 10.0;
+      if (fastest) h["satellite"]["cvode_over_fastest"] = best / fastest->cpu_s;
     }
   }
   for (const std::string v : {"state", "body"}) {
@@ -283,6 +295,22 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
     const WorkPoint* hi = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e8);
     if (lo && hi && lo->cpu_s > 0) {
       h["stiffness_growth"]["rodas4_" + v + "_norm"] = {
+          {"cpu_1e4_s", lo->cpu_s},
+          {"cpu_1e8_s", hi->cpu_s},
+          {"ratio", hi->cpu_s / lo->cpu_s},
+          {"steps_ratio", static_cast<double>(hi->steps) / std::max(1L, lo->steps)}};
+    }
+  }
+  for (const char* solver : {"radau5", "verlet"}) {
+    const WorkPoint* lo = nullptr;
+    const WorkPoint* hi = nullptr;
+    for (const auto& p : sweep) {
+      if (p.problem != "satellite_stiffness" || p.solver != solver) continue;
+      if (p.stiffness == 1e4) lo = &p;
+      if (p.stiffness == 1e8) hi = &p;
+    }
+    if (lo && hi && lo->cpu_s > 0) {
+      h["stiffness_growth"][solver] = {
           {"cpu_1e4_s", lo->cpu_s},
           {"cpu_1e8_s", hi->cpu_s},
           {"ratio", hi->cpu_s / lo->cpu_s},

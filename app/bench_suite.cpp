@@ -232,6 +232,15 @@ std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c) {
                                     &ref, &ref_omega));
     }
   }
+  // Velocity Verlet: symplectic, one RHS per step, stable below h = 2 / omega_max (~1e-3 s
+  // here); its energy error stays bounded, so the rigid motion is what its error measures.
+  const std::vector<double> hv =
+      c.quick ? std::vector<double>{8e-4, 2.5e-4} : std::vector<double>{8e-4, 5e-4, 2.5e-4, 1e-4};
+  for (double h : hv) {
+    const pr::Mechanism m = satellite(k, Method::kVerlet, 0.0, h, pr::ErrorNorm::kState);
+    out.push_back(satellite_point("satellite", m, "state", k, 0.0, h, run_satellite(m, c.repeat),
+                                  &ref, &ref_omega));
+  }
   return out;
 }
 
@@ -251,6 +260,21 @@ std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c) {
     if (!c.quick || k <= 1e6) {
       const pr::Mechanism m = satellite(k, Method::kDopri5, tol, 0.0, pr::ErrorNorm::kState);
       out.push_back(satellite_point("satellite_stiffness", m, "state", k, tol, 0.0,
+                                    run_satellite(m, c.quick ? 1 : c.repeat), nullptr, nullptr));
+    }
+    // RADAU5 (tol 1e-8: its tolerance maps to 0.1 tol^(2/3)) steps over the vibration with
+    // a Newton iteration that converges at every stiffness.
+    {
+      const pr::Mechanism m = satellite(k, Method::kRadau5, 1e-8, 0.0, pr::ErrorNorm::kState);
+      out.push_back(satellite_point("satellite_stiffness", m, "state", k, 1e-8, 0.0,
+                                    run_satellite(m, c.quick ? 1 : c.repeat), nullptr, nullptr));
+    }
+    // Verlet at half its stability limit, h = 1 / omega_max ~ 5e-4 s sqrt(1e6 / k): sqrt(k)
+    // growth, but one cheap RHS per step.
+    {
+      const double h = 5e-4 * std::sqrt(1e6 / k);
+      const pr::Mechanism m = satellite(k, Method::kVerlet, 0.0, h, pr::ErrorNorm::kState);
+      out.push_back(satellite_point("satellite_stiffness", m, "state", k, 0.0, h,
                                     run_satellite(m, c.quick ? 1 : c.repeat), nullptr, nullptr));
     }
   }
@@ -575,13 +599,31 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
   const pr::Mechanism base = io::parse_mechanism(doc, "<quad_hopper_drop>").mechanism;
   // 10 s of the drop costs seconds per run: each point is run once (c.repeat is
   // not applied here), so the default bench stays within its budget.
-  const std::vector<double> tols =
-      c.quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6};
-  nlohmann::json out = nlohmann::json::array();
-  for (double tol : tols) {
+  struct Setting {
+    Method method;
+    double tol;  ///< rtol = atol (RODAS4) or the fixed step h [s] (Verlet)
+    pr::ErrorNorm norm;
+  };
+  std::vector<Setting> settings;
+  for (double tol : c.quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6}) {
     for (auto norm : {pr::ErrorNorm::kState, pr::ErrorNorm::kBody}) {
+      settings.push_back({Method::kRodas4, tol, norm});
+    }
+  }
+  // Velocity Verlet (stable below h ~ 4e-4 s here): bounded energy error between contact
+  // events, but each touchdown's kink in the contact force costs accuracy, and after the
+  // passive body starts to rock (an unstable mode of the undamped hopper, ~3 s) there
+  // are many of them.
+  if (!c.quick) settings.push_back({Method::kVerlet, 5e-5, pr::ErrorNorm::kState});
+  nlohmann::json out = nlohmann::json::array();
+  for (const Setting& setting : settings) {
+    {
+      const double tol = setting.tol;
+      const pr::ErrorNorm norm = setting.norm;
       pr::Mechanism m = base;
+      m.simulation.solver.method = setting.method;
       m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+      if (setting.method == Method::kVerlet) m.simulation.solver.h_fixed = tol;
       m.simulation.error_norm = norm;
       const double c0 = thread_cpu();
       const pr::RunSummary r = pr::simulate(m);
@@ -618,7 +660,9 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
       // standing on the ground is not well defined in both tools; this is).
       const double drop_energy = m.total_mass() * 9.81 * drop;
       out.push_back(
-          {{"tol", tol},
+          {{"method", std::string(ode::to_string(setting.method))},
+           {"tol", setting.method == Method::kVerlet ? 0.0 : tol},
+           {"h", setting.method == Method::kVerlet ? tol : 0.0},
            {"norm", norm == pr::ErrorNorm::kBody ? "body" : "state"},
            {"t_end", t_end},
            {"status", std::string(pr::to_string(r.status))},

@@ -445,6 +445,12 @@ class Loader {
     }
     s.stiffness = e.positive_or("stiffness", set.contact_stiffness);
     s.damping = e.number_or("damping", 0.0, 0.0);
+    s.friction = e.number_or("friction", 0.0, 0.0, 10.0);
+    s.slip_velocity = e.number_or("slip_velocity", s.slip_velocity, 1e-9, 10.0);
+    if (s.friction > 0.0 && (s.type != pr::SurfaceType::kPlane || s.body >= 0)) {
+      throw e.error("friction", "friction only on a grounded plane (0 elsewhere)",
+                    describe(doc_at(e)["friction"]));
+    }
     const json* nodes = raw(doc_at(e), "nodes");
     e.optional("nodes");
     if (nodes == nullptr || !nodes->is_array() || nodes->empty()) {

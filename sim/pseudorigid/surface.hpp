@@ -4,7 +4,11 @@
 //   plane  one-sided contact: F = -k (n.r) n - b (n.v) n while n.r < 0
 //   line   a prismatic joint:  F = -k (1 - d d^T) r - b (1 - d d^T) v
 //   point  a pivot:            F = -k r - b v
-// with r = x_node - x_surface, v the relative velocity. A surface is grounded
+// with r = x_node - x_surface, v the relative velocity. A grounded plane may add
+// regularised Coulomb friction (seed 2.8 feet; MuJoCo-like ground contact):
+//   F_t = -mu N v_t / sqrt(|v_t|^2 + v_s^2),  N = max(0, -k (n.r) - b (n.v)),
+// v_t = v - (n.v) n: Coulomb's law above the slip velocity v_s, viscous below it
+// (a stuck foot creeps at |v_t| ~ v_s |F_t| / (mu N)). A surface is grounded
 // (its point and direction fixed in the world; no states) or attached to a body
 // (its point is one of the body's ghost points, its direction turns with the
 // body, and the reaction acts on the body through that ghost point).
@@ -32,6 +36,8 @@ struct Surface {
   std::vector<NodeRef> nodes;                            ///< constrained nodes
   double stiffness = 1e5;                                ///< [N/m]
   double damping = 0.0;                                  ///< [N s/m]
+  double friction = 0.0;        ///< Coulomb coefficient mu (grounded planes only) [-]
+  double slip_velocity = 1e-3;  ///< regularisation velocity v_s of the friction law [m/s]
 };
 
 }  // namespace pronk::pseudorigid

@@ -25,7 +25,9 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
     has_power_flows_ = has_power_flows_ || c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0 ||
                        c.kind == ConnectionClass::kActuator;
   }
-  for (const Surface& s : m.surfaces) has_power_flows_ = has_power_flows_ || s.damping > 0.0;
+  for (const Surface& s : m.surfaces) {
+    has_power_flows_ = has_power_flows_ || s.damping > 0.0 || s.friction > 0.0;
+  }
   has_power_flows_ = has_power_flows_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
   rhs_needs_frames_ =
       attached || !m.body_forces.empty() || !m.impulse_actuators.empty() ||
@@ -172,6 +174,14 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
   }
   e.active = true;
   e.force = -e.proj * (s.stiffness * e.r + s.damping * e.v);
+  if (s.friction > 0.0) {  // grounded planes only (the loader enforces it)
+    e.normal = std::max(0.0, e.dir.dot(e.force));
+    const Vector3d vt = e.v - e.dir * e.dir.dot(e.v);
+    e.friction =
+        (-s.friction * e.normal / std::sqrt(vt.squaredNorm() + s.slip_velocity * s.slip_velocity)) *
+        vt;
+    e.force += e.friction;
+  }
   return e;
 }
 
@@ -417,7 +427,22 @@ void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
         attached_surface_jacobian(s, n, y);
         continue;
       }
-      jac_force(n, n, -s.stiffness * e.proj, -s.damping * e.proj);
+      Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
+      if (e.normal > 0.0) {
+        // F_t = -mu N g(v), g = v_t / w, w = sqrt(|v_t|^2 + v_s^2), v_t = P v with
+        // P = 1 - n n^T; dN/dx = -k n^T, dN/dv = -b n^T (n = dir, penetrating);
+        // dg/dv = (P - g g^T P) / w = (P - v_t v_t^T / w^2) / w.
+        const Vector3d& nn = e.dir;
+        const Matrix3d p = Matrix3d::Identity() - nn * nn.transpose();
+        const Vector3d vt = p * e.v;
+        const double w2 = vt.squaredNorm() + s.slip_velocity * s.slip_velocity;
+        const double w = std::sqrt(w2);
+        const Vector3d g = vt / w;
+        kx += (s.friction * s.stiffness) * g * nn.transpose();
+        kv += (s.friction * s.damping) * g * nn.transpose() -
+              (s.friction * e.normal / w) * (p - vt * vt.transpose() / w2);
+      }
+      jac_force(n, n, kx, kv);
     }
   }
   for (const WorldForce& f : m_.world_forces) jac_transfer(f.node, f.force);
@@ -541,7 +566,7 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
   for (const Surface& s : m_.surfaces) {
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval e = eval_surface(s, n, y);
-      if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v);
+      if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v) - e.friction.dot(e.v);
     }
   }
   for (const BodyForce& f : m_.body_forces) {

@@ -92,6 +92,8 @@ class MechanismSystem final : public ode::OdeSystem {
     Eigen::Vector3d r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
     Eigen::Vector3d dir = Eigen::Vector3d::Zero();
     double penetration = 0.0;
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< friction part of force [N]
+    double normal = 0.0;  ///< normal force N >= 0 the friction scales with [N]
   };
   SurfaceEval eval_surface(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
   /// Forces of a body-attached surface on node n as the exact gradient of its

@@ -178,6 +178,16 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     const json* dopri = at_tol(dopri_pts, 1e-7);
     REQUIRE(dopri != nullptr);
     CHECK((*dopri)["errors"]["omega_final"].get<double>() < 1e-5);
+    // Velocity Verlet below its stability limit: the same answer, one RHS per step.
+    const auto verlet = points(doc, "satellite", "verlet");
+    REQUIRE(verlet.size() >= 2);
+    for (const auto& p : verlet) {
+      CHECK(p["status"] == "completed");
+      CHECK(p["errors"]["omega_final"].get<double>() < 1e-5);
+      CHECK(p["rhs"].get<long>() == p["steps"].get<long>() + 1);
+    }
+    const json& fastest = doc["headline"]["satellite"]["fastest"];
+    CHECK(fastest["omega_final"].get<double>() <= 1e-5);
   }
 
   SECTION("satellite: Euler and RK2 beyond their stability limit end diverged (SPEC case 8)") {
@@ -202,6 +212,14 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     CHECK(seen[1e8] == 2);
     const json& g = doc["headline"]["stiffness_growth"];
     CHECK(g["rodas4_state_norm"]["ratio"].get<double>() > 0);
+    for (const std::string solver : {"radau5", "verlet"}) {
+      const auto pts = points(doc, "satellite_stiffness", solver);
+      REQUIRE(pts.size() == 2);
+      for (const auto& p : pts) CHECK(p["status"] == "completed");
+      CHECK(g[solver]["ratio"].get<double>() > 0);
+    }
+    // Verlet at half its stability limit: steps grow like sqrt(k), 100x over the sweep.
+    CHECK(g["verlet"]["steps_ratio"].get<double>() == Approx(100.0).epsilon(0.01));
   }
 
   SECTION("hopper: fitted orders of the fixed-step methods are 1, 2 and 4") {

@@ -25,7 +25,7 @@ json base() {
     "bodies": [{"name": "b", "mass": 2, "inertia": [1, 1, 0.5], "com": [1, 0, 1],
                 "ghost_points": [{"name": "hip", "position": [0.1, 0, 0]}]}],
     "connections": [{"name": "s", "a": "a", "b": "p", "stiffness": 100, "rest_length": "initial"}],
-    "surfaces": [{"name": "g", "type": "plane", "nodes": ["a", "b.0"]}],
+    "surfaces": [{"name": "g", "type": "plane", "nodes": ["a", "b.0"], "friction": 0.8}],
     "forces": [{"name": "f", "frame": "body", "node": "hip", "body": "b", "force": [0, 0, 1],
                 "t_start": 0.1, "t_end": 0.2}],
     "simulation": {"t_end": 0.1}
@@ -72,6 +72,8 @@ TEST_CASE("a valid mechanism document builds the expected components", "[io][mec
   REQUIRE(m.surfaces.size() == 1);
   CHECK(m.surfaces[0].nodes.size() == 2);
   CHECK(m.surfaces[0].stiffness == 1e5);
+  CHECK(m.surfaces[0].friction == 0.8);
+  CHECK(m.surfaces[0].slip_velocity == 1e-3);
   REQUIRE(m.body_forces.size() == 1);
   CHECK(m.body_forces[0].t_end == 0.2);
   CHECK(m.simulation.solver.method == pronk::ode::Method::kRodas4);
@@ -127,6 +129,9 @@ TEST_CASE("bad mechanism input names the exact JSON Pointer", "[io][mechanism]")
       {"unknown surface type", "/surfaces/0/type", "\"sphere\"", "/surfaces/0/type"},
       {"unknown surface node", "/surfaces/0/nodes/1", "\"b.7\"", "/surfaces/0/nodes/1"},
       {"zero surface direction", "/surfaces/0/direction", "[0,0,0]", "/surfaces/0/direction"},
+      {"negative friction", "/surfaces/0/friction", "-0.5", "/surfaces/0/friction"},
+      {"friction on a line", "/surfaces/0/type", "\"line\"", "/surfaces/0/friction"},
+      {"zero slip velocity", "/surfaces/0/slip_velocity", "0", "/surfaces/0/slip_velocity"},
       {"unknown body of a force", "/forces/0/body", "\"c\"", "/forces/0/body"},
       {"force window ends before it starts", "/forces/0/t_end", "0.05", "/forces/0/t_end"},
       {"unknown method", "/simulation/method", "\"rk45\"", "/simulation/method"},

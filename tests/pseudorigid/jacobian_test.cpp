@@ -110,6 +110,24 @@ TEST_CASE("analytic Jacobian matches central differences for every component", "
       }
     }
   }
+  SECTION("grounded plane with regularised Coulomb friction, sliding and nearly stuck") {
+    for (double slip : {1e-3, 2.0}) {  // |v_t| >> v_s (Coulomb) and |v_t| < v_s (viscous)
+      Mechanism m = base_body(&b);
+      const NodeRef f = add_mass(m, "foot", 0.05, Eigen::Vector3d(0.25, -0.1, -0.2),
+                                 Eigen::Vector3d(0.2, -0.4, 1.0));
+      Surface s;
+      s.nodes = {f, NodeRef{NodeRef::Kind::kMass, 2}};
+      s.stiffness = 1e4;
+      s.damping = 4.0;
+      s.friction = 0.8;
+      s.slip_velocity = slip;
+      s.direction = Eigen::Vector3d(0.2, 0.1, 1.0).normalized();
+      s.point = Eigen::Vector3d(0.0, 0.0, 0.5);
+      m.surfaces.push_back(s);
+      INFO("slip velocity " << slip);
+      CHECK(check(m) < 1e-6);
+    }
+  }
   SECTION("forces: world force at a ghost point, body force, impulse actuator, dummy mass") {
     Mechanism m = base_body(&b);
     const NodeRef g = add_ghost_point(m, b, "hip", Eigen::Vector3d(-0.14, 0.115, -0.04));
