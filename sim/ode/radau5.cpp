@@ -21,10 +21,8 @@
 #include <complex>
 #include <limits>
 
-#include <Eigen/LU>
-#include <Eigen/SparseLU>
-
 #include "sim/ode/steppers.hpp"
+#include "sim/ode/stiff_linear_algebra.hpp"
 
 namespace pronk::ode::detail {
 namespace {
@@ -88,8 +86,9 @@ class Radau5Stepper final : public Stepper {
       : h_max_(options.h_max),
         h_min_(options.h_min),
         h_initial_(options.h_initial),
-        use_dense_(n <= options.dense_lu_max_dimension),
-        n_(n) {
+        n_(n),
+        lu1_(n <= options.dense_lu_max_dimension),
+        lu2_(n <= options.dense_lu_max_dimension) {
     // RADAU5 maps the user's tolerances to the ones its order-3 error
     // estimate needs (rtol' = 0.1 rtol^(2/3), atol' = rtol' atol / rtol).
     const double quot = options.atol / options.rtol;
@@ -300,24 +299,8 @@ class Radau5Stepper final : public Stepper {
 
  private:
   void evaluate_jacobian(const OdeSystem& sys) {
-    const Eigen::Index n = y_.size();
-    if (sys.has_jacobian()) {
-      sys.jacobian(t_, y_, j_sparse_);
-      assert(j_sparse_.rows() == n && j_sparse_.cols() == n);
-    } else {
-      Eigen::MatrixXd jd(n, n);
-      tmp_ = y_;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const double delta = std::sqrt(1e-16 * std::max(1e-5, std::abs(y_[i])));
-        tmp_[i] = y_[i] + delta;
-        sys.rhs(t_, tmp_, g1_);
-        jd.col(i) = (g1_ - f0_) / delta;
-        tmp_[i] = y_[i];
-      }
-      counters_.rhs_evaluations += n;
-      j_sparse_ = jd.sparseView();
-    }
-    ++counters_.jacobian_evaluations;
+    detail::evaluate_jacobian(sys, t_, y_, f0_, j_sparse_, tmp_, g1_, counters_);
+    assert(j_sparse_.rows() == y_.size() && j_sparse_.cols() == y_.size());
     have_jacobian_ = true;
     jacobian_fresh_ = true;
     h_factored_ = -1.0;
@@ -328,58 +311,20 @@ class Radau5Stepper final : public Stepper {
   bool factorize(double h) {
     if (h == h_factored_) return factorization_ok_;
     const auto& c = k();
-    const Eigen::Index n = y_.size();
-    const double fac1 = c.u1 / h;
-    const Cplx fac2(c.alph / h, c.beta / h);
     ++counters_.lu_factorizations;
     h_factored_ = h;
-    factorization_ok_ = true;
-    if (use_dense_) {
-      e1_dense_ = -Eigen::MatrixXd(j_sparse_);
-      e2_dense_ = e1_dense_.cast<Cplx>();
-      e1_dense_.diagonal().array() += fac1;
-      e2_dense_.diagonal().array() += fac2;
-      lu1_dense_.compute(e1_dense_);
-      lu2_dense_.compute(e2_dense_);
-      const auto& l1 = lu1_dense_.matrixLU();
-      const auto& l2 = lu2_dense_.matrixLU();
-      for (Eigen::Index i = 0; i < n; ++i) {
-        if (!(std::abs(l1(i, i)) > 0.0) || !std::isfinite(l1(i, i))) factorization_ok_ = false;
-        if (!(std::abs(l2(i, i)) > 0.0) || !std::isfinite(std::abs(l2(i, i)))) {
-          factorization_ok_ = false;
-        }
-      }
-    } else {
-      e1_sparse_ = -j_sparse_;
-      for (Eigen::Index i = 0; i < n; ++i) e1_sparse_.coeffRef(i, i) += fac1;
-      e1_sparse_.makeCompressed();
-      e2_sparse_ = (-j_sparse_).cast<Cplx>();
-      for (Eigen::Index i = 0; i < n; ++i) e2_sparse_.coeffRef(i, i) += fac2;
-      e2_sparse_.makeCompressed();
-      lu1_sparse_.compute(e1_sparse_);
-      lu2_sparse_.compute(e2_sparse_);
-      factorization_ok_ =
-          lu1_sparse_.info() == Eigen::Success && lu2_sparse_.info() == Eigen::Success;
-    }
+    const bool real_ok = lu1_.compute(j_sparse_, c.u1 / h);
+    const bool complex_ok = lu2_.compute(j_sparse_, Cplx(c.alph / h, c.beta / h));
+    factorization_ok_ = real_ok && complex_ok;
     return factorization_ok_;
   }
 
-  void solve_real(Vec& b) {
-    if (use_dense_) {
-      b = lu1_dense_.solve(b);
-    } else {
-      b = lu1_sparse_.solve(b);
-    }
-  }
+  void solve_real(Vec& b) { lu1_.solve(b); }
 
   /// Solves E2 (re + i im) = (re + i im) in place.
   void solve_complex(Vec& re, Vec& im) {
     for (int i = 0; i < n_; ++i) cz_[i] = Cplx(re[i], im[i]);
-    if (use_dense_) {
-      cz_ = lu2_dense_.solve(cz_);
-    } else {
-      cz_ = lu2_sparse_.solve(cz_);
-    }
+    lu2_.solve(cz_);
     re = cz_.real();
     im = cz_.imag();
   }
@@ -438,7 +383,6 @@ class Radau5Stepper final : public Stepper {
   double rtol_ = 0.0, atol_ = 0.0;  ///< transformed tolerances
   double fnewt_ = 0.0;              ///< Newton stopping tolerance
   double h_max_, h_min_, h_initial_;
-  bool use_dense_;
   int n_;
   double t_ = 0.0, t_prev_ = 0.0;  ///< [s]
   double h_ = 0.0;                 ///< next trial step [s]
@@ -455,15 +399,10 @@ class Radau5Stepper final : public Stepper {
       err_;
   mutable Vec tmp_;
   CVec cz_;
-  Eigen::SparseMatrix<double> j_sparse_, e1_sparse_;
-  Eigen::SparseMatrix<Cplx> e2_sparse_;
-  Eigen::MatrixXd e1_dense_;
-  Eigen::MatrixXcd e2_dense_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu1_dense_;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> lu2_dense_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu1_sparse_;
-  Eigen::SparseLU<Eigen::SparseMatrix<Cplx>> lu2_sparse_;
+  Eigen::SparseMatrix<double> j_sparse_;
   SolverCounters counters_;
+  ShiftedLu<double> lu1_;  ///< (gamma/h) I - J
+  ShiftedLu<Cplx> lu2_;    ///< ((alpha + i beta)/h) I - J
 };
 
 }  // namespace

@@ -12,10 +12,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
-#include <Eigen/SparseLU>
-
 #include "sim/ode/steppers.hpp"
+#include "sim/ode/stiff_linear_algebra.hpp"
 
 namespace pronk::ode::detail {
 namespace {
@@ -57,7 +55,6 @@ class Rodas4Stepper final : public Stepper {
         h_max_(options.h_max),
         h_min_(options.h_min),
         h_initial_(options.h_initial),
-        use_dense_(n <= options.dense_lu_max_dimension),
         y_(Vec::Zero(n)),
         y_prev_(Vec::Zero(n)),
         y_new_(Vec::Zero(n)),
@@ -66,7 +63,8 @@ class Rodas4Stepper final : public Stepper {
         fx_(Vec::Zero(n)),
         dy_(Vec::Zero(n)),
         r1_(Vec::Zero(n)),
-        r2_(Vec::Zero(n)) {
+        r2_(Vec::Zero(n)),
+        lu_(n <= options.dense_lu_max_dimension) {
     for (Vec& k : k_) k = Vec::Zero(n);
   }
 
@@ -157,24 +155,8 @@ class Rodas4Stepper final : public Stepper {
  private:
   /// J = df/dy at (t_, y_) (analytic or forward differences) and df/dt.
   void evaluate_jacobian(const OdeSystem& sys) {
-    const Eigen::Index n = y_.size();
-    if (sys.has_jacobian()) {
-      sys.jacobian(t_, y_, j_sparse_);
-      assert(j_sparse_.rows() == n && j_sparse_.cols() == n);
-    } else {
-      // Forward differences, column by column.
-      Eigen::MatrixXd jd(n, n);
-      y_tmp_ = y_;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const double delta = std::sqrt(1e-16 * std::max(1e-5, std::abs(y_[i])));
-        y_tmp_[i] = y_[i] + delta;
-        sys.rhs(t_, y_tmp_, dy_);
-        jd.col(i) = (dy_ - f0_) / delta;
-        y_tmp_[i] = y_[i];
-      }
-      counters_.rhs_evaluations += n;
-      j_sparse_ = jd.sparseView();
-    }
+    detail::evaluate_jacobian(sys, t_, y_, f0_, j_sparse_, y_tmp_, dy_, counters_);
+    assert(j_sparse_.rows() == y_.size() && j_sparse_.cols() == y_.size());
     if (sys.autonomous()) {
       fx_.setZero();
     } else {
@@ -183,46 +165,20 @@ class Rodas4Stepper final : public Stepper {
       ++counters_.rhs_evaluations;
       fx_ = (dy_ - f0_) / delta;
     }
-    ++counters_.jacobian_evaluations;
     jacobian_current_ = true;
     h_factored_ = -1.0;
   }
 
   /// Factorises E = I/(gamma h) - J; false when singular or non-finite.
   bool factorize(double h) {
-    if (h == h_factored_) return factorization_ok_;
-    const Eigen::Index n = y_.size();
-    const double fac = 1.0 / (kGamma * h);
+    if (h == h_factored_) return lu_.ok();
     ++counters_.lu_factorizations;
     h_factored_ = h;
-    if (use_dense_) {
-      e_dense_ = -Eigen::MatrixXd(j_sparse_);
-      e_dense_.diagonal().array() += fac;
-      lu_dense_.compute(e_dense_);
-      // Partial pivoting never reports singularity: check the pivots.
-      factorization_ok_ = true;
-      const auto& lu = lu_dense_.matrixLU();
-      for (Eigen::Index i = 0; i < n; ++i) {
-        if (!(std::abs(lu(i, i)) > 0.0) || !std::isfinite(lu(i, i))) factorization_ok_ = false;
-      }
-    } else {
-      e_sparse_ = -j_sparse_;
-      for (Eigen::Index i = 0; i < n; ++i) e_sparse_.coeffRef(i, i) += fac;
-      e_sparse_.makeCompressed();
-      lu_sparse_.compute(e_sparse_);
-      factorization_ok_ = lu_sparse_.info() == Eigen::Success;
-    }
-    return factorization_ok_;
+    return lu_.compute(j_sparse_, 1.0 / (kGamma * h));
   }
 
   /// Solves E x = b in place.
-  void solve(Vec& b) {
-    if (use_dense_) {
-      b = lu_dense_.solve(b);
-    } else {
-      b = lu_sparse_.solve(b);
-    }
-  }
+  void solve(Vec& b) { lu_.solve(b); }
 
   /// One trial step; returns the scaled error (non-finite on failure).
   double attempt(const OdeSystem& sys, double h, double t_new) {
@@ -297,14 +253,12 @@ class Rodas4Stepper final : public Stepper {
 
   double rtol_, atol_;
   double h_max_, h_min_, h_initial_;  ///< step limits and first trial step [s]
-  bool use_dense_;                    ///< dense LU (small systems) or SparseLU
   double t_ = 0.0, t_prev_ = 0.0;     ///< current time, start of the last step [s]
   double h_ = 0.0;                    ///< step the next attempt tries [s]
   double h_last_ = 0.0;               ///< last accepted step; 0 after reset [s]
   double h_acc_ = 0.0;                ///< previous accepted step (Gustafsson) [s]
   double err_acc_ = 1e-2;             ///< previous accepted error (Gustafsson)
   double h_factored_ = -1.0;          ///< h of the current factorisation [s]
-  bool factorization_ok_ = false;
   bool h_chosen_ = false;
   bool jacobian_current_ = false;  ///< j_sparse_ belongs to (t_, y_)
   Vec y_, y_prev_, y_new_, y_tmp_;
@@ -313,10 +267,8 @@ class Rodas4Stepper final : public Stepper {
   Vec dy_;
   Vec k_[6];     ///< stage solutions of the last attempt
   Vec r1_, r2_;  ///< dense output coefficients of the last accepted step
-  Eigen::SparseMatrix<double> j_sparse_, e_sparse_;
-  Eigen::MatrixXd e_dense_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_dense_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_sparse_;
+  Eigen::SparseMatrix<double> j_sparse_;
+  ShiftedLu<double> lu_;  ///< I/(gamma h) - J, dense (small systems) or SparseLU
   SolverCounters counters_;
 };
 
