@@ -129,7 +129,7 @@ TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][
   CHECK(err.find("pronk: error: ", first + 1) == std::string::npos);
 }
 
-TEST_CASE("mpirun -np 2 pronk map: a task failing on the worker rank reaches rank 0",
+TEST_CASE("mpirun -np 2 pronk map: a task that throws is reported once by rank 0",
           "[cli][map][mpi]") {
   // Every value is valid alone, but no combination is (a start below the fall
   // height): every cell throws io::InputError while it is computed, on whichever
