@@ -128,4 +128,29 @@ TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][
   CHECK(err.find("/trials/cuont: expected a known key") != std::string::npos);
   CHECK(err.find("pronk: error: ", first + 1) == std::string::npos);
 }
+
+TEST_CASE("mpirun -np 2 pronk map: a task that throws is reported once by rank 0",
+          "[cli][map][mpi]") {
+  // Every value is valid alone, but no combination is (a start below the fall
+  // height): every cell throws io::InputError while it is computed, on whichever
+  // rank; rank 0 reports the first one as bad input (exit 2), once, and every rank exits.
+  Dir d;
+  json doc = pronk::test::tiny_map_document(2, 1, 1.0);
+  doc["axes"] = {
+      {{"kind", "pointer"}, {"pointer", "/initial/position/2"}, {"values", {0.2, 0.3}}},
+      {{"kind", "pointer"}, {"pointer", "/simulation/fall/min_height"}, {"values", {0.35, 0.4}}}};
+  { std::ofstream(d.path + "/s.json") << doc.dump(); }
+  std::string err;
+  CHECK(run(pronk_exe() + " map " + d.path + "/s.json -q --out " + d.path + "/threads", d.path,
+            &err) == 2);
+  CHECK(err.find("/initial/position/2: expected a CoM height above the fall height") !=
+        std::string::npos);
+  CHECK(run(mpirun_np2() + pronk_exe() + " map " + d.path + "/s.json -q --out " + d.path + "/mpi",
+            d.path, &err) == 2);
+  const size_t first = err.find("pronk: error: ");
+  CHECK(first != std::string::npos);
+  CHECK(err.find("/initial/position/2: expected a CoM height above the fall height") !=
+        std::string::npos);
+  CHECK(err.find("pronk: error: ", first + 1) == std::string::npos);
+}
 #endif
