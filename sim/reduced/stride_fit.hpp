@@ -40,7 +40,7 @@ StrideState touchdown_state(const scene::Scene& scene, const StrideRecord& recor
 /// The perturbations are small enough for the map to be nearly linear (the fit's error
 /// grows with their size) and large against the integration error of the runs (which the
 /// fit divides by their size): on the legged hopper the estimate moves by < 1e-3 between
-/// 0.3x and 0.03x these sizes, for the pulse model and the pseudo-rigid robot alike.
+/// 3x and 0.3x these sizes, for the pulse model and the pseudo-rigid robot alike.
 struct StrideFitOptions {
   int runs = 4;                  ///< disturbed runs
   double duration = 6.0;         ///< simulated time per run [s]
