@@ -95,6 +95,7 @@ TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli]
   CHECK(summary["type"] == "pronk_map");
   CHECK(summary["totals"]["cells"] == 6);
   CHECK(summary["boundary"]["rows"].size() == 2);
+  CHECK(summary["spectral_radius_method"] == "stride map linearised by central differences");
   const std::string cells = slurp(out + "/cells.csv");
   REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --resume --out " + out, d.path) == 0);
   CHECK(slurp(d.path + "/stdout.txt").find("(0 computed, 6 from the journal)") !=
@@ -118,6 +119,7 @@ TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
   const json summary = json::parse(slurp(d.path + "/out/summary.json"));
   CHECK(summary["models"] == json({"pulse", "pseudo_rigid"}));
   CHECK(summary["primary_model"] == "pseudo_rigid");
+  CHECK(summary["spectral_radius_method"] == "off");
   // The two models judge this trial alike (see the engine test for the reasons).
   CHECK(summary["totals"]["disagreements"] == 0);
   CHECK(summary["totals"]["stabilized_fraction"]["pulse"] ==
