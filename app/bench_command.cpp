@@ -178,9 +178,10 @@ std::string robustness_script(const bench::LadderRobustness& lr) {
       "set output 'fidelity_robustness.svg'\n"
       "set title 'Fidelity ladder: fraction of " +
       std::to_string(lr.trials) +
-      " seeded disturbance trials stabilized (map_seed_duty, row 0)'\n"
+      " seeded disturbance trials stabilized (map_seed_duty, row 0)' noenhanced\n"
       "set xlabel 'duty cycle [-]'\nset ylabel 'stabilized fraction [-]'\n"
-      "set yrange [-0.05:1.05]\nset grid\nset key outside right\n";
+      "set yrange [-0.05:1.05]\nset offsets 0.05, 0.05, 0, 0\nset grid\n"
+      "set key outside right\n";
   std::string plot = "plot ";
   int i = 0;
   for (const auto& r : lr.rungs) {
@@ -189,8 +190,10 @@ std::string robustness_script(const bench::LadderRobustness& lr) {
     for (const auto& c : r.cells) s += fmt(c.duty) + " " + fmt(c.fraction) + "\n";
     s += "EOD\n";
     plot += std::string(i ? ", " : "") + "$d" + std::to_string(i) +
-            " using 1:2 with linespoints title '" + r.model + " (boundary " + r.boundary_status +
-            " " + fmt(r.boundary) + ")' noenhanced";
+            // Rungs that agree draw on top of each other: distinct points, widths and dashes.
+            " using 1:2 with linespoints lw " + std::to_string(3 - i) + " dt " +
+            std::to_string(i + 1) + " pt " + std::to_string(4 + 2 * i) + " ps 1.5 title '" +
+            r.model + " (boundary " + r.boundary_status + " " + fmt(r.boundary) + ")' noenhanced";
     ++i;
   }
   if (i == 0) return "";
