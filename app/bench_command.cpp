@@ -37,9 +37,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
       "Measure speed versus accuracy (SPEC 7): work-precision of every solver on the\n"
       "pseudo-rigid satellite (tolerances 1e-3..1e-10, internal stiffness 1e4..1e8 N/m)\n"
       "and the reduced legged hopper (steps, tolerances, stride-map fixed point), the\n"
-      "fidelity ladder (impulse, pulse; pseudo-rigid when available), the quad hopper\n"
-      "drop, and the peers SUNDIALS CVODE and MuJoCo when they were built.\n"
-      "Writes bench.json, work_precision.csv, fidelity_ladder.csv and SVG diagrams.");
+      "fidelity ladder (impulse, pulse, pseudo-rigid: apexes, stride-map spectral radius,\n"
+      "robustness to seeded disturbances at duty 10-40 %), the quad hopper drop, and the\n"
+      "peers SUNDIALS CVODE and MuJoCo when they were built. Writes bench.json,\n"
+      "work_precision.csv, fidelity_ladder.csv, fidelity_robustness.csv and SVG diagrams.");
   cmd->add_flag("--quick", args.quick, "CI size: fewer points and shorter runs (< 1 min)");
   cmd->add_option("--out", args.out_dir, "Output directory (default: out/bench)");
   cmd->add_option("--repeat", args.repeat,
@@ -84,6 +85,10 @@ json to_json(const FidelityPoint& p) {
           {"mean_apex_m", p.mean_apex},
           {"apex_rms_vs_impulse_m", p.apex_rms_vs_impulse},
           {"spectral_radius", p.spectral_radius},
+          {"spectral_radius_method", p.spectral_radius_method},
+          {"spectral_radius_fit", p.spectral_radius_fit},
+          {"fit_ok", p.fit_ok},
+          {"fit_residual_rel", p.fit_residual_rel},
           {"stable", p.stable},
           {"fixed_point_vs_impulse", p.fixed_point_vs_impulse}};
 }
@@ -92,6 +97,107 @@ std::string fmt(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", v);
   return b;
+}
+
+json to_json(const bench::LadderRobustness& lr) {
+  json rungs = json::array();
+  for (const auto& r : lr.rungs) {
+    json cells = json::array();
+    for (const auto& c : r.cells) {
+      cells.push_back({{"duty", c.duty},
+                       {"trials", c.trials},
+                       {"stabilized", c.stabilized},
+                       {"stabilized_fraction", c.fraction},
+                       {"fell", c.fell},
+                       {"mean_duty", c.mean_duty},
+                       {"spectral_radius", c.spectral_radius},
+                       {"only_this", c.only_this},
+                       {"only_pulse", c.only_pulse}});
+    }
+    json j = {{"model", r.model}, {"available", r.available}, {"note", r.note}, {"cells", cells}};
+    if (r.available) {
+      j["boundary_status"] = r.boundary_status;
+      j["boundary"] = r.boundary;
+      j["bracket_bad"] = r.bad;
+      j["first_good"] = r.first_good;
+      j["probes"] = r.probes;
+      j["disagreements_vs_pulse"] = r.disagreements_vs_pulse;
+      j["cpu_s"] = r.cpu_s;
+    }
+    rungs.push_back(j);
+  }
+  return {{"study", lr.study},
+          {"trials_per_cell", lr.trials},
+          {"seed", lr.seed},
+          {"trial_duration_s", lr.trial_duration},
+          {"duties", lr.duties},
+          {"boundary_resolution", lr.resolution},
+          {"definitions",
+           {{"stabilized",
+             "pronk map's: no fall, settled (position, tilt, apex) by stride 30 and "
+             "held for 3 strides to the end of the trial"},
+            {"boundary",
+             "largest duty at which every trial stabilizes: the last good cell, bisected "
+             "towards the next until the bracket [boundary, bracket_bad] is at most "
+             "boundary_resolution wide (status all_good: >= the last duty; none_good: < the "
+             "first)"},
+            {"disagreements_vs_pulse",
+             "trials this rung stabilizes and the pulse rung does not (only_this) or the "
+             "reverse (only_pulse), same trials"},
+            {"spectral_radius",
+             "undisturbed gait at the duty: stride map (impulse, pulse), fitted estimate "
+             "(pseudo_rigid); 10 = no orbit / no estimate"}}},
+          {"rungs", rungs}};
+}
+
+std::string robustness_csv(const bench::LadderRobustness& lr) {
+  std::string s =
+      "model,duty,trials,stabilized,stabilized_fraction,fell,mean_duty,spectral_radius,only_this,"
+      "only_pulse,boundary_status,boundary,disagreements_vs_pulse\n";
+  for (const auto& r : lr.rungs) {
+    if (!r.available) {
+      s += r.model + ",,,,,,,,,,not_available,,\n";
+      continue;
+    }
+    for (const auto& c : r.cells) {
+      s += r.model + "," + fmt(c.duty) + "," + std::to_string(c.trials) + "," +
+           std::to_string(c.stabilized) + "," + fmt(c.fraction) + "," + std::to_string(c.fell) +
+           "," + fmt(c.mean_duty) + "," + fmt(c.spectral_radius) + "," +
+           std::to_string(c.only_this) + "," + std::to_string(c.only_pulse) + "," +
+           r.boundary_status + "," + fmt(r.boundary) + "," +
+           std::to_string(r.disagreements_vs_pulse) + "\n";
+    }
+  }
+  return s;
+}
+
+/// Stabilized fraction vs duty per rung (linear axes), the boundaries as vertical marks.
+std::string robustness_script(const bench::LadderRobustness& lr) {
+  std::string s =
+      "set terminal svg size 900,560 dynamic enhanced font 'Helvetica,11'\n"
+      "set output 'fidelity_robustness.svg'\n"
+      "set title 'Fidelity ladder: fraction of " +
+      std::to_string(lr.trials) +
+      " seeded disturbance trials stabilized (map_seed_duty, row 0)' noenhanced\n"
+      "set xlabel 'duty cycle [-]'\nset ylabel 'stabilized fraction [-]'\n"
+      "set yrange [-0.05:1.05]\nset offsets 0.05, 0.05, 0, 0\nset grid\n"
+      "set key outside right\n";
+  std::string plot = "plot ";
+  int i = 0;
+  for (const auto& r : lr.rungs) {
+    if (!r.available || r.cells.empty()) continue;
+    s += "$d" + std::to_string(i) + " << EOD\n";
+    for (const auto& c : r.cells) s += fmt(c.duty) + " " + fmt(c.fraction) + "\n";
+    s += "EOD\n";
+    plot += std::string(i ? ", " : "") + "$d" + std::to_string(i) +
+            // Rungs that agree draw on top of each other: distinct points, widths and dashes.
+            " using 1:2 with linespoints lw " + std::to_string(3 - i) + " dt " +
+            std::to_string(i + 1) + " pt " + std::to_string(4 + 2 * i) + " ps 1.5 title '" +
+            r.model + " (boundary " + r.boundary_status + " " + fmt(r.boundary) + ")' noenhanced";
+    ++i;
+  }
+  if (i == 0) return "";
+  return s + plot + "\n";
 }
 
 std::string work_precision_csv(const std::vector<WorkPoint>& pts) {
@@ -121,13 +227,16 @@ std::string work_precision_csv(const std::vector<WorkPoint>& pts) {
 std::string ladder_csv(const std::vector<FidelityPoint>& pts) {
   std::string s =
       "model,available,pulse_duration,status,t_end,wall_s,cpu_s,cost_per_sim_s,strides,mean_duty,"
-      "mean_apex_m,apex_rms_vs_impulse_m,spectral_radius,stable,fixed_point_vs_impulse,note\n";
+      "mean_apex_m,apex_rms_vs_impulse_m,spectral_radius,spectral_radius_method,"
+      "spectral_radius_fit,fit_ok,stable,fixed_point_vs_impulse,note\n";
   for (const auto& p : pts) {
     s += p.model + "," + (p.available ? "1" : "0") + "," + fmt(p.pulse_duration) + "," + p.status +
          "," + fmt(p.t_end) + "," + fmt(p.wall_s) + "," + fmt(p.cpu_s) + "," +
          fmt(p.cost_per_sim_s) + "," + std::to_string(p.strides) + "," + fmt(p.mean_duty) + "," +
          fmt(p.mean_apex) + "," + fmt(p.apex_rms_vs_impulse) + "," + fmt(p.spectral_radius) + "," +
-         (p.stable ? "1" : "0") + "," + fmt(p.fixed_point_vs_impulse) + ",\"" + p.note + "\"\n";
+         p.spectral_radius_method + "," + fmt(p.spectral_radius_fit) + "," +
+         (p.fit_ok ? "1" : "0") + "," + (p.stable ? "1" : "0") + "," +
+         fmt(p.fixed_point_vs_impulse) + ",\"" + p.note + "\"\n";
   }
   return s;
 }
@@ -409,6 +518,9 @@ int run_bench(const BenchArgs& args) {
   const auto orders = bench::fit_orders(hop);
   progress(args, "fidelity ladder");
   const auto ladder = bench::fidelity_ladder(c);
+  progress(args, c.quick ? "fidelity ladder: robustness (reduced rungs)"
+                         : "fidelity ladder: robustness (the pseudo-rigid rung takes ~2 min)");
+  const auto robustness = bench::ladder_robustness(c);
   progress(args, "quad hopper drop (pseudo-rigid)");
   const json drop = bench::quad_hopper_drop(c);
 
@@ -449,6 +561,7 @@ int run_bench(const BenchArgs& args) {
   }
   doc["fidelity_ladder"] = json::array();
   for (const auto& p : ladder) doc["fidelity_ladder"].push_back(to_json(p));
+  doc["fidelity_robustness"] = to_json(robustness);
   doc["quad_hopper_drop"] = drop;
   doc["peers"]["cvode"] = cvode;
   doc["peers"]["mujoco"] = mujoco;
@@ -460,6 +573,7 @@ int run_bench(const BenchArgs& args) {
   io::write_file_atomic(dir + "/bench.json", doc.dump(2) + "\n");
   io::write_file_atomic(dir + "/work_precision.csv", work_precision_csv(all));
   io::write_file_atomic(dir + "/fidelity_ladder.csv", ladder_csv(ladder));
+  io::write_file_atomic(dir + "/fidelity_robustness.csv", robustness_csv(robustness));
 
   // Figures.
   auto sat_series = wp_series(sat, "satellite", "omega_final");
@@ -486,6 +600,8 @@ int run_bench(const BenchArgs& args) {
   for (const auto& [name, script] : figs) {
     if (!script.empty()) io::render_figure(dir, name, script);
   }
+  if (const std::string script = robustness_script(robustness); !script.empty())
+    io::render_figure(dir, "fidelity_robustness", script);
   {  // stiffness sweep: wall time vs k
     std::map<std::string, Series> by;
     for (const auto& p : sweep) {
@@ -554,8 +670,28 @@ int run_bench(const BenchArgs& args) {
     std::printf("pronk bench%s: %.1f s on %s\n", c.quick ? " --quick" : "",
                 doc["total_wall_s"].get<double>(), doc["machine"].get<std::string>().c_str());
     std::printf("%s\n", h.dump(2).c_str());
-    std::printf("outputs in %s/ (bench.json, work_precision.csv, fidelity_ladder.csv, *.svg)\n",
-                dir.c_str());
+    std::printf("fidelity ladder, robustness (%ld trials of %g s per duty, map_seed_duty row 0):\n",
+                robustness.trials, robustness.trial_duration);
+    for (const auto& r : robustness.rungs) {
+      if (!r.available) {
+        std::printf("  %-12s %s\n", r.model.c_str(), r.note.c_str());
+        continue;
+      }
+      std::string cells;
+      for (const auto& x : r.cells) {
+        char b[96];
+        std::snprintf(b, sizeof b, " %g: %ld/%ld (rho %.3g)", x.duty, x.stabilized, x.trials,
+                      x.spectral_radius);
+        cells += b;
+      }
+      std::printf("  %-12s%s; boundary %s %s; disagreements vs pulse %ld\n", r.model.c_str(),
+                  cells.c_str(), r.boundary_status.c_str(), fmt(r.boundary).c_str(),
+                  r.disagreements_vs_pulse);
+    }
+    std::printf(
+        "outputs in %s/ (bench.json, work_precision.csv, fidelity_ladder.csv, "
+        "fidelity_robustness.csv, *.svg)\n",
+        dir.c_str());
   }
   return peer_failed ? 1 : 0;
 }

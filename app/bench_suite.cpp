@@ -6,11 +6,14 @@
 #include <ctime>
 #include <string>
 
+#include "optimize/map/map_engine.hpp"
+#include "optimize/map/map_study.hpp"
 #include "sim/io/mechanism_loader.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/reduced/simulator.hpp"
+#include "sim/reduced/stride_fit.hpp"
 #include "sim/reduced/stride_map.hpp"
 #include "sim/robot/robot_simulator.hpp"
 // The satellite scene is shared by the tests, bench_pseudorigid and this bench.
@@ -379,6 +382,28 @@ std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points) {
 
 namespace {
 
+reduced::RunResult simulate_reduced(const scene::Scene& s) {
+  reduced::RunOptions o;
+  o.record_trajectory = false;
+  return reduced::simulate(s, o);
+}
+
+reduced::RunResult simulate_full(const scene::Scene& s) {
+  robot::RobotRunOptions o;
+  o.record_trajectory = false;
+  return robot::simulate(s, o).run;
+}
+
+void set_fit(FidelityPoint& p, const reduced::StrideFitResult& f) {
+  p.spectral_radius_fit = f.spectral_radius;
+  p.fit_ok = f.ok;
+  p.fit_residual_rel = f.residual_rel;
+  if (!f.ok) p.note += std::string(p.note.empty() ? "" : "; ") + "no stride-map fit: " + f.reason;
+}
+
+/// The full model's settings of every pseudo-rigid run of the ladder (see pseudo_rigid_rung).
+constexpr const char* kFullModelSettings = R"({"legs": "force", "internal_stiffness": 1e6})";
+
 FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   FidelityPoint p;
   p.model = std::string(scene::to_string(s.model));
@@ -416,16 +441,20 @@ FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   p.mean_apex = na ? apex / na : 0.0;
   const reduced::StabilityResult st = reduced::analyze_stability(s);
   p.spectral_radius = st.spectral_radius;
+  p.spectral_radius_method = "stride_map";
   p.stable = st.ok && st.spectral_radius < 1.0;
   if (!st.ok) p.note = "no periodic orbit: " + st.reason;
+  // The estimator the pseudo-rigid rung relies on, checked here against the stride map.
+  set_fit(p, reduced::estimate_stride_map(s, simulate_reduced));
   return p;
 }
 
 /// The same robot in the full model with force legs (seed 2.7: leg forces at ghost-point
 /// hips, no leg masses) and internal springs of 1e6 N/m, so that all three rungs share massless
 /// legs and differ only in the body model and the stance dynamics. One run per point (seconds per
-/// simulated second); skipped with --quick. Verdict: the run completes without a fall (the full
-/// model has no stride map).
+/// simulated second); skipped with --quick. Stability: the spectral radius of the stride map
+/// fitted to 4 small-perturbation runs of 6 s (the full model has no stride map to evaluate);
+/// verdict: the run completes without a fall and that radius is below 1.
 FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   FidelityPoint p;
   p.model = "pseudo_rigid";
@@ -469,9 +498,12 @@ FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   }
   p.mean_duty = nd ? duty / nd : 0.0;
   p.mean_apex = na ? apex / na : 0.0;
-  p.stable = r.run.status == reduced::RunStatus::kCompleted;
   p.note = "one run; force legs; internal k " + std::to_string(r.monitors.internal_stiffness) +
-           " N/m; verdict = no fall (no stride map in the full model)";
+           " N/m; spectral radius fitted to 4 perturbed runs of 6 s";
+  set_fit(p, reduced::estimate_stride_map(sp, simulate_full));
+  p.spectral_radius = p.spectral_radius_fit;
+  p.spectral_radius_method = "fit";
+  p.stable = r.run.status == reduced::RunStatus::kCompleted && p.fit_ok && p.spectral_radius < 1.0;
   return p;
 }
 
@@ -528,6 +560,110 @@ std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c) {
         }
       }
       out.push_back(p);
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- ladder robustness
+
+namespace {
+
+/// The ladder's robustness study for one model: the shipped map_seed_duty study (scene,
+/// seed, disturbances, 12 s trials, "stabilized" criterion) at its row 0 (no extra roll: row
+/// seeding keys the trials by row, so trial t here is trial t of that row), on a 1-D duty
+/// axis, with the first `trials` trials and the full model's settings of the ladder.
+optimize::map::MapStudy robustness_study(const BenchConfig& c, const std::string& model,
+                                         const std::vector<double>& duties, long trials) {
+  using nlohmann::json;
+  const std::string file = c.studies_dir + "/map_seed_duty.json";
+  json doc = io::read_json_file(file);
+  doc["name"] = "fidelity_robustness_" + model;
+  doc["models"] = json::array({model});
+  doc["axes"] = json::array({json{{"kind", "duty_cycle"}, {"values", duties}}});
+  doc["trials"]["count"] = trials;
+  doc["stability"] = true;
+  // Three bisection probes from a 0.1 bracket (0.1 -> 0.05 -> 0.025 -> 0.0125 wide); the map's
+  // default, spacing / 8, rounds to just below 0.0125 and would take a fourth.
+  doc["boundary"] = {{"resolution", 0.015}};
+  doc["scene_overrides"].push_back(std::string("/pseudo_rigid=") + kFullModelSettings);
+  return optimize::map::parse_map_study(doc, file, c.studies_dir);
+}
+
+RungRobustness robustness_rung(const optimize::map::MapStudy& st) {
+  namespace m = optimize::map;
+  RungRobustness r;
+  r.model = std::string(scene::to_string(st.primary_model()));
+  const double c0 = thread_cpu();
+  std::vector<m::CellResult> cells;
+  for (long i = 0; i < st.cells(); ++i) cells.push_back(m::compute_cell(st, i));
+  const std::vector<m::CellSummary> sums = m::summarize(st, cells);
+  const m::BoundaryResult b = m::bisect_row(st, m::initial_bracket(st, sums, 0));
+  r.cpu_s = thread_cpu() - c0;
+  r.boundary_status = b.status;
+  r.boundary = b.boundary;
+  r.bad = b.bad;
+  r.first_good = b.status == "none_good" ? 0.0 : b.first_good;
+  r.probes = b.probes;
+  const long n = st.trials.count;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    RobustnessCell cell;
+    cell.duty = sums[i].value0;
+    cell.trials = n;
+    for (const m::TrialOutcome& t : cells[i].trials[0]) {
+      cell.verdicts.push_back(t.stabilized);
+      cell.stabilized += t.stabilized ? 1 : 0;
+      cell.fell += t.status != "completed" ? 1 : 0;
+    }
+    cell.fraction = static_cast<double>(cell.stabilized) / static_cast<double>(n);
+    cell.mean_duty = sums[i].mean_duty;
+    cell.spectral_radius = sums[i].spectral_radius;
+    r.cells.push_back(std::move(cell));
+  }
+  return r;
+}
+
+}  // namespace
+
+LadderRobustness ladder_robustness(const BenchConfig& c) {
+  // Duties across the seed controller's limit (~29 % in map_seed_duty); 8 trials per cell:
+  // a 12 s trial of the full model costs ~1.5 s, so its rung (32 trials, 3 bisection probes
+  // of up to 8 trials, 4 fitted radii) stays near 2 min; the reduced rungs cost milliseconds.
+  const std::vector<double> duties = {0.1, 0.2, 0.3, 0.4};
+  const long trials = 8;
+  LadderRobustness out;
+  out.duties = duties;
+  for (const char* model : {"impulse", "pulse", "pseudo_rigid"}) {
+    const optimize::map::MapStudy st = robustness_study(c, model, duties, trials);
+    out.study = st.file + " (row 0: no extra roll)";
+    out.trials = st.trials.count;
+    out.seed = st.trials.seed;
+    out.trial_duration = st.trial_set.duration;
+    out.resolution = st.resolution;
+    if (c.quick && st.primary_model() == scene::ModelKind::kPseudoRigid) {
+      RungRobustness r;
+      r.model = model;
+      r.available = false;
+      r.note = "not run with --quick: the full model costs ~1.5 s per 12 s trial";
+      out.rungs.push_back(r);
+      continue;
+    }
+    out.rungs.push_back(robustness_rung(st));
+  }
+  // Disagreements with the pulse rung, trial by trial (the seed's criterion).
+  const RungRobustness* pulse = nullptr;
+  for (const auto& r : out.rungs)
+    if (r.model == "pulse") pulse = &r;
+  for (auto& r : out.rungs) {
+    if (!r.available || pulse == nullptr) continue;
+    for (size_t i = 0; i < r.cells.size(); ++i) {
+      RobustnessCell& cell = r.cells[i];
+      const auto& ref = pulse->cells[i].verdicts;
+      for (size_t t = 0; t < cell.verdicts.size() && t < ref.size(); ++t) {
+        cell.only_this += cell.verdicts[t] && !ref[t] ? 1 : 0;
+        cell.only_pulse += ref[t] && !cell.verdicts[t] ? 1 : 0;
+      }
+      r.disagreements_vs_pulse += cell.only_this + cell.only_pulse;
     }
   }
   return out;

@@ -5,6 +5,7 @@
 // them (JSON, CSV, figures) and merges the peers' results.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -66,17 +67,72 @@ struct FidelityPoint {
   double cpu_s = 0.0;           ///< median CPU time [s]
   double cost_per_sim_s = 0.0;  ///< CPU time per simulated second [s/s]
   long strides = 0;
-  double mean_duty = 0.0;               ///< stance / stride time
-  double mean_apex = 0.0;               ///< mean apex height over strides 2.. [m]
-  double apex_rms_vs_impulse = 0.0;     ///< RMS of apex_k - apex_k(impulse) over strides 2.. [m]
-  double spectral_radius = 0.0;         ///< of the stride map at its fixed point
-  bool stable = false;                  ///< spectral radius < 1 with an orbit found
+  double mean_duty = 0.0;            ///< stance / stride time
+  double mean_apex = 0.0;            ///< mean apex height over strides 2.. [m]
+  double apex_rms_vs_impulse = 0.0;  ///< RMS of apex_k - apex_k(impulse) over strides 2.. [m]
+  /// Of the stride map at its fixed point: impulse and pulse by finite differences of the map
+  /// (reduced::analyze_stability); pseudo_rigid, which has no map to evaluate, the fit below.
+  double spectral_radius = 0.0;
+  std::string spectral_radius_method;  ///< "stride_map" or "fit"
+  /// Estimate from the affine map fitted to the touchdowns of 4 small-perturbation runs of
+  /// 6 s (reduced::estimate_stride_map), for every rung: on impulse and pulse it checks the
+  /// estimator against the stride map; 10 when no estimate.
+  double spectral_radius_fit = 0.0;
+  bool fit_ok = false;
+  double fit_residual_rel = 0.0;  ///< RMS fit residual / RMS of the next states [-]
+  bool stable = false;  ///< spectral radius < 1 with an orbit found (pseudo_rigid: and no fall)
   double fixed_point_vs_impulse = 0.0;  ///< |s* - s*_impulse|_inf
   std::vector<double> apexes;           ///< apex heights of strides 2.. [m] (not written out)
 };
 
+/// One rung at one duty cycle: a cell of the ladder's robustness map (the seeded
+/// disturbance trials and the "stabilized" criterion of `pronk map`).
+struct RobustnessCell {
+  double duty = 0.0;  ///< duty-axis value (sets the stance pulse T) [-]
+  long trials = 0, stabilized = 0, fell = 0;
+  double fraction = 0.0;   ///< stabilized / trials [-]
+  double mean_duty = 0.0;  ///< measured, mean over the trials [-]
+  /// Undisturbed gait at this duty: stride map (impulse, pulse) or its fit (pseudo_rigid);
+  /// 10 when there is no periodic orbit / no estimate.
+  double spectral_radius = 0.0;
+  long only_this = 0;          ///< trials this rung stabilizes and the pulse rung does not
+  long only_pulse = 0;         ///< trials the pulse rung stabilizes and this rung does not
+  std::vector<bool> verdicts;  ///< stabilized, per trial (not written out)
+};
+
+/// One rung's robustness over the duty cycles.
+struct RungRobustness {
+  std::string model;
+  bool available = true;
+  std::string note;
+  std::vector<RobustnessCell> cells;
+  /// The map's boundary: the largest duty at which every trial stabilizes, bisected between
+  /// the last good and the next cell (3 probes: to 0.0125).
+  /// "bisected", "all_good" (boundary >= the last duty) or "none_good" (< the first duty).
+  std::string boundary_status;
+  double boundary = 0.0;            ///< [-]
+  double bad = 0.0;                 ///< the bracket's bad end (bisected; else = boundary) [-]
+  double first_good = 0.0;          ///< lowest duty with every trial stabilized [-]
+  long probes = 0;                  ///< bisection probes (each runs the trials)
+  long disagreements_vs_pulse = 0;  ///< over all cells: only_this + only_pulse
+  double cpu_s = 0.0;               ///< CPU time of this rung's trials, probes and radii [s]
+};
+
+/// Robustness of every rung at a few duty cycles: row 0 (no extra roll) of the shipped
+/// map_seed_duty study — its scene, seed, disturbances, trial duration and criterion —
+/// at fewer duties and trials, every rung on the same trials.
+struct LadderRobustness {
+  std::string study;  ///< the map study the trials come from
+  long trials = 0;    ///< per cell and rung
+  std::uint64_t seed = 0;
+  double trial_duration = 0.0;  ///< [s]
+  double resolution = 0.0;      ///< of the boundary bisection [-]
+  std::vector<double> duties;
+  std::vector<RungRobustness> rungs;
+};
+
 /// A rung of the ladder: runs the robot scene (its pulse settings chosen by the caller) in
-/// one model. The pseudo-rigid rung plugs in here when the robot exists in the full model.
+/// one model.
 struct FidelityRung {
   std::string model;
   std::function<FidelityPoint(const scene::Scene&, const BenchConfig&)> run;
@@ -94,6 +150,9 @@ std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c);
 std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points);
 /// The fidelity ladder on the legged hopper for a few pulse durations.
 std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c);
+/// Robustness of the ladder's rungs at duty 0.1, 0.2, 0.3, 0.4 (8 trials of 12 s per cell;
+/// the pseudo_rigid rung, about 2 min of CPU, is not run with --quick).
+LadderRobustness ladder_robustness(const BenchConfig& c);
 /// The quad spring hopper drop in the pseudo-rigid model (the scene the MuJoCo peer
 /// mirrors): per tolerance cost, energy-balance drift (energy_error_rel: max drift / drop
 /// energy m g 0.15 m), apex heights. JSON records.

@@ -58,7 +58,9 @@ def section(d, figdir):
         f"{d['total_wall_s']:.0f} s. Costs are the CPU time of the running thread (the build "
         "machine is shared, so wall times vary with the other jobs; both are in `bench.json`). "
         "Data: [`bench.json`](" + figdir + "/bench.json), [`work_precision.csv`](" + figdir +
-        "/work_precision.csv), [`fidelity_ladder.csv`](" + figdir + "/fidelity_ladder.csv). "
+        "/work_precision.csv), [`fidelity_ladder.csv`](" + figdir + "/fidelity_ladder.csv)" +
+        (", [`fidelity_robustness.csv`](" + figdir + "/fidelity_robustness.csv)"
+         if "fidelity_robustness" in d else "") + ". "
         "Regenerate with `bash scripts/update_readme_perf.sh --run`."
     )
     L.append("")
@@ -192,8 +194,11 @@ def section(d, figdir):
     L.append("")
     # Fidelity ladder.
     L.append("**Fidelity ladder** (legged hopper, case 3 scene, 10 s; discrepancies against the "
-             "impulse model; stability from the stride map's multipliers; the pseudo-rigid rung: "
-             "force legs, internal springs 1e6 N/m, one run, verdict = no fall):")
+             "impulse model; stability from the stride map's multipliers: for impulse and pulse "
+             "by finite differences of the map, for the pseudo-rigid rung (force legs, internal "
+             "springs 1e6 N/m, one run) by the fit of an affine map to the touchdowns of 4 "
+             "small-perturbation runs of 6 s, ≈; the fit is shown for every rung, so the "
+             "reduced rungs check it against the map):")
     L.append("")
     rows = []
     unavailable = set()
@@ -201,17 +206,62 @@ def section(d, figdir):
         if not p["available"]:
             if p["model"] not in unavailable:  # one row per missing rung, not per pulse
                 unavailable.add(p["model"])
-                rows.append([p["model"], "all", "not available: " + p["note"]] + ["–"] * 6)
+                rows.append([p["model"], "all", "not available: " + p["note"]] + ["–"] * 7)
             continue
-        full = p["model"] == "pseudo_rigid"  # no stride map: the verdict is "no fall"
+        fitted = p.get("spectral_radius_method") == "fit"
+        full = p["model"] == "pseudo_rigid"
+        if full and "spectral_radius_method" not in p:  # a bench from before the fit
+            radius, verdict = "–", ("no fall" if p["stable"] else "fell")
+        else:
+            radius = ("≈" if fitted else "") + g(p["spectral_radius"])
+            # Reduced rungs: the stride map's verdict; pseudo-rigid: the fit's, and no fall.
+            verdict = ("stable" if p["stable"] else
+                       "fell" if full and p["status"] != "completed" else "unstable")
+        fit = g(p["spectral_radius_fit"]) if p.get("fit_ok") else "–"
         rows.append([p["model"], g(p["pulse_duration"]) if p["pulse_duration"] else "–", p["status"],
                      ms(p["cost_per_sim_s"]), g(p["mean_duty"]), g(p["mean_apex_m"]),
-                     g(p["apex_rms_vs_impulse_m"]), "–" if full else g(p["spectral_radius"]),
-                     ("no fall" if p["stable"] else "fell") if full
-                     else ("stable" if p["stable"] else "unstable")])
+                     g(p["apex_rms_vs_impulse_m"]), radius, fit, verdict])
     L.append(table(["model", "pulse T [s]", "status", "CPU per simulated s", "duty", "mean apex [m]",
-                    "apex RMS vs impulse [m]", "spectral radius", "verdict"], rows))
+                    "apex RMS vs impulse [m]", "spectral radius", "fitted radius", "verdict"], rows))
     L.append("")
+    rb = d.get("fidelity_robustness")
+    if rb is not None:
+        duties = rb["duties"]
+        L.append(
+            f"**Fidelity ladder: robustness** (`pronk map`'s trials and criterion: "
+            f"{rb['trials_per_cell']} seeded disturbance trials of {g(rb['trial_duration_s'])} s "
+            f"per duty from `studies/map_seed_duty.json`, row 0 — tilt ≤ 10°, lateral offset "
+            f"≤ 0.4 m, kick ≤ 0.2 m/s —, the same trials for every rung; cells: trials stabilized "
+            f"(spectral radius of the undisturbed gait, ≈ fitted); boundary: the largest duty at "
+            f"which every trial stabilizes, bisected until the bracket is at most "
+            f"{g(rb['boundary_resolution'])} wide (in brackets: the duty where a trial failed); "
+            f"disagreements: trials exactly one of the rung and the pulse rung stabilizes. The "
+            f"impulse model has no stance, so its cells are one scene):")
+        L.append("")
+        rows = []
+        for r in rb["rungs"]:
+            if not r["available"]:
+                rows.append([r["model"], "not available: " + r["note"]] + ["–"] * (len(duties) + 2))
+                continue
+            cells = []
+            for c in r["cells"]:
+                rad = c["spectral_radius"]
+                mark = "≈" if r["model"] == "pseudo_rigid" else ""
+                cells.append(f"{c['stabilized']}/{c['trials']} (ρ {mark}{g(rad)})"
+                             if rad < 10 else f"{c['stabilized']}/{c['trials']} (no orbit)")
+            st = r["boundary_status"]
+            b = (f"≥ {g(r['boundary'])}" if st == "all_good" else
+                 f"< {g(r['boundary'])}" if st == "none_good" else
+                 f"**{g(r['boundary'], 4)}** ({g(r.get('bracket_bad'), 4)})")
+            tot = sum(c["only_this"] for c in r["cells"]), sum(c["only_pulse"] for c in r["cells"])
+            dis = "–" if r["model"] == "pulse" else (
+                f"{r['disagreements_vs_pulse']} ({tot[0]} only {r['model']}, {tot[1]} only pulse)")
+            rows.append([r["model"]] + cells + [b, dis, ms(r["cpu_s"])])
+        L.append(table(["model"] + [f"duty {g(x)}" for x in duties] +
+                       ["boundary (duty)", "disagreements vs pulse", "CPU"], rows))
+        L.append("")
+        L.append(f"![fidelity ladder robustness]({figdir}/fidelity_robustness.svg)")
+        L.append("")
     # Quad hopper drop.
     L.append("**Quad spring hopper drop** (1.5 kg body, seed inertia, four prismatic 100 N/m legs, "
              "10 g feet, 0.15 m drop, no dissipation; energy error relative to the drop energy; "

@@ -28,7 +28,8 @@ struct TrialOutcome {
 
 /// One cell: trials[model][trial], and the stride-map spectral radius of the
 /// primary model's undisturbed cell scene (computed by the first cell of each
-/// distinct scene only; see stability_owner()).
+/// distinct scene only; see stability_owner()). For the pseudo_rigid model the
+/// radius is estimated from a few disturbed runs (reduced::estimate_stride_map).
 struct CellResult {
   long index = 0;
   std::vector<std::vector<TrialOutcome>> trials;
@@ -80,7 +81,9 @@ std::uint64_t cell_seed_key(const MapStudy& st, long cell);
 /// The disturbance of trial `trial` under seed key `key`.
 Scenario trial_scenario(const MapStudy& st, std::uint64_t key, long trial);
 
-/// Runs one trial of a scene (disturbance applied) and judges it.
+/// Runs one trial of a scene (disturbance applied) and judges it: the reduced
+/// simulator for impulse and pulse, robot::simulate (the scene's "pseudo_rigid"
+/// settings) for pseudo_rigid; the same records, metrics and criterion for all.
 TrialOutcome run_trial(const MapStudy& st, const scene::Scene& cell_scene, const Scenario& trial);
 
 /// The first cell with the same scene as `cell` (cells differing only in

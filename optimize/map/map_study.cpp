@@ -7,6 +7,7 @@
 #include "optimize/study.hpp"
 #include "sim/io/json_reader.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/robot/pseudo_rigid_robot.hpp"
 
 namespace pronk::optimize::map {
 
@@ -173,7 +174,19 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
 scene::ModelKind model_of(const std::string& file, const std::string& pointer, const json& v) {
   if (v == "impulse") return scene::ModelKind::kImpulse;
   if (v == "pulse") return scene::ModelKind::kPulse;
-  throw io::InputError(file, pointer, "\"impulse\" or \"pulse\"", io::describe(v));
+  if (v == "pseudo_rigid") return scene::ModelKind::kPseudoRigid;
+  throw io::InputError(file, pointer, "\"impulse\", \"pulse\" or \"pseudo_rigid\"",
+                       io::describe(v));
+}
+
+// The full model must be able to build the robot of `s` (the scene's "pseudo_rigid" settings).
+void check_robot(const scene::Scene& s, const std::string& file, const std::string& pointer,
+                 const std::string& what) {
+  try {
+    robot::build_robot(s);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(file, pointer, what, e.what());
+  }
 }
 
 }  // namespace
@@ -280,7 +293,8 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     const json& m = doc.at("models");
     r.optional("models");
     if (!m.is_array() || m.empty() || m.size() > 2)
-      throw r.error("models", "an array of one or two of \"impulse\", \"pulse\"", io::describe(m));
+      throw r.error("models", "an array of one or two of \"impulse\", \"pulse\", \"pseudo_rigid\"",
+                    io::describe(m));
     for (size_t i = 0; i < m.size(); ++i) {
       st.models.push_back(model_of(file, "/models/" + std::to_string(i), m[i]));
     }
@@ -290,6 +304,10 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     r.optional("models");
     st.models = {scene::ModelKind::kImpulse, scene::ModelKind::kPulse};
   }
+  const bool full_model = std::find(st.models.begin(), st.models.end(),
+                                    scene::ModelKind::kPseudoRigid) != st.models.end();
+  if (full_model)
+    check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
 
   // Axes.
   if (!r.has("axes")) throw r.error("axes", "an array of one or two axes", "nothing");
@@ -388,14 +406,18 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     for (size_t k = 0; k < a.values.size(); ++k) {
       json d = st.scene_doc;
       d[json::json_pointer(a.pointer)] = a.values[k];
+      const std::string where = "/axes/" + std::to_string(i) + "/values/" + std::to_string(k);
+      scene::Scene s;
       try {
-        io::parse_scene(d, st.scene_file);
+        s = io::parse_scene(d, st.scene_file);
       } catch (const io::InputError& e) {
         throw io::InputError(
-            file, "/axes/" + std::to_string(i) + "/values/" + std::to_string(k),
+            file, where,
             "a value that makes a valid scene (" + e.pointer() + ": " + e.expected() + ")",
             e.found());
       }
+      if (full_model)
+        check_robot(s, file, where, "a value that makes a robot the full model can build");
     }
   }
   st.hash = fnv1a_hex(doc.dump() + "\n" + st.scene_doc.dump());

@@ -67,12 +67,17 @@ struct MapStudy {
   std::string scene_file;     ///< names the scene in error messages
   scene::Scene base_scene;    ///< scene_doc parsed
   std::vector<MapAxis> axes;  ///< 1 or 2; axis 0 is the boundary axis (columns), axis 1 the rows
-  std::vector<scene::ModelKind> models;  ///< model A [, model B]; the last one is the primary model
-  RandomScenarios trials;                ///< count = trials per cell; seed = the study seed
-  ScenarioSet trial_set;                 ///< duration / stride limit of every trial (no scenarios)
+  /// Model A [, model B]: impulse, pulse or pseudo_rigid (the robot in the full model with the
+  /// scene's "pseudo_rigid" settings: seconds per trial, not milliseconds); the last one is the
+  /// primary model.
+  std::vector<scene::ModelKind> models;
+  RandomScenarios trials;  ///< count = trials per cell; seed = the study seed
+  ScenarioSet trial_set;   ///< duration / stride limit of every trial (no scenarios)
   StabilizedCriteria stabilized;
   Seeding seeding = Seeding::kRow;
-  bool stability = true;    ///< spectral radius of the primary model's stride map per cell
+  /// Spectral radius of the primary model's stride map per distinct cell scene (pseudo_rigid:
+  /// the estimate from reduced::estimate_stride_map, 4 runs of 6 s each).
+  bool stability = true;
   double resolution = 0.0;  ///< boundary bisection stops when bad - good <= this (axis-0 unit)
   int max_bisection_steps = 40;
   std::string output_dir;  ///< default results/<name>

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -258,6 +259,86 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     CHECK(by["pulse"]["apex_rms_vs_impulse_m"].get<double>() < 0.02);
     CHECK(by["pseudo_rigid"]["available"] == false);
     CHECK(by["pseudo_rigid"]["status"] == "skipped");
+    // The stride-map fit (the pseudo-rigid rung's estimator) against the stride map of the
+    // reduced rungs (finite differences of the map): the tolerance of the estimator's own test.
+    for (const std::string m : {"impulse", "pulse"}) {
+      INFO(by[m].dump());
+      CHECK(by[m]["spectral_radius_method"] == "stride_map");
+      CHECK(by[m]["fit_ok"] == true);
+      CHECK(by[m]["fit_residual_rel"].get<double>() < 0.01);
+      CHECK(std::abs(by[m]["spectral_radius_fit"].get<double>() -
+                     by[m]["spectral_radius"].get<double>()) < 2e-3);
+    }
+    CHECK(fs::file_size(dir / "out/fidelity_robustness.csv") > 100);
+  }
+
+  SECTION("ladder robustness: the reduced rungs reproduce the shipped map's trials") {
+    const json& rb = doc["fidelity_robustness"];
+    CHECK(rb["duties"] == json({0.1, 0.2, 0.3, 0.4}));
+    CHECK(rb["trials_per_cell"] == 8);
+    CHECK(rb["seed"] == 261);
+    CHECK(rb["trial_duration_s"] == 12.0);
+    // Independent reference: the committed `pronk map studies/map_seed_duty.json` run, row 0
+    // (no extra roll), its first 8 trials at these duties: the verdicts per model.
+    std::map<std::string, std::map<double, int>> shipped;  // model -> duty -> stabilized
+    {
+      std::ifstream in(std::string(PRONK_SOURCE_DIR) + "/results/map_seed_duty/trials.csv");
+      std::string line;
+      std::getline(in, line);
+      std::vector<std::string> head;
+      for (std::stringstream h(line); std::getline(h, line, ',');) head.push_back(line);
+      auto col = [&](const std::string& n) {
+        return static_cast<size_t>(std::find(head.begin(), head.end(), n) - head.begin());
+      };
+      while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        for (std::stringstream r(line); std::getline(r, line, ',');) f.push_back(line);
+        const double duty = std::stod(f[col("duty_cycle")]);
+        if (std::stod(f[col("tilt_deg")]) != 0.0 || std::stol(f[col("trial")]) >= 8) continue;
+        for (const std::string m : {"impulse", "pulse"})
+          shipped[m][std::round(duty * 100) / 100] += f[col(m + "_stabilized")] == "1" ? 1 : 0;
+      }
+    }
+    REQUIRE(shipped["pulse"].size() == 41);
+    std::map<std::string, json> by;
+    for (const auto& r : rb["rungs"]) by[r["model"].get<std::string>()] = r;
+    REQUIRE(by.size() == 3);
+    for (const std::string m : {"impulse", "pulse"}) {
+      INFO(m);
+      REQUIRE(by[m]["available"] == true);
+      REQUIRE(by[m]["cells"].size() == 4);
+      long only_this = 0, only_pulse = 0;
+      for (const auto& c : by[m]["cells"]) {
+        const double duty = c["duty"].get<double>();
+        INFO("duty " << duty);
+        CHECK(c["trials"] == 8);
+        CHECK(c["stabilized"].get<int>() == shipped[m][duty]);
+        CHECK(c["stabilized_fraction"].get<double>() == c["stabilized"].get<double>() / 8.0);
+        only_this += c["only_this"].get<long>();
+        only_pulse += c["only_pulse"].get<long>();
+      }
+      CHECK(by[m]["disagreements_vs_pulse"].get<long>() == only_this + only_pulse);
+    }
+    // The seed's finding: the impulse model stabilizes every trial, the pulse model loses
+    // some from ~30 % duty; each such trial is a disagreement, and none goes the other way.
+    CHECK(by["impulse"]["boundary_status"] == "all_good");
+    long pulse_lost = 0;
+    for (const auto& c : by["pulse"]["cells"]) pulse_lost += 8 - c["stabilized"].get<long>();
+    CHECK(by["impulse"]["disagreements_vs_pulse"].get<long>() == pulse_lost);
+    CHECK(by["pulse"]["disagreements_vs_pulse"] == 0);
+    // Pulse boundary: bisected between its last all-stabilized duty and the next, with a
+    // bracket no wider than the resolution. The shipped map (16 trials) has every trial
+    // stabilized at every duty up to 0.28 and at 0.2875: so do its first 8, and this
+    // bisection (0.25, 0.275, 0.2875) cannot end lower.
+    const json& p = by["pulse"];
+    CHECK(p["boundary_status"] == "bisected");
+    CHECK(p["bracket_bad"].get<double>() - p["boundary"].get<double>() <=
+          rb["boundary_resolution"].get<double>());
+    CHECK(p["boundary"].get<double>() >= 0.2875 - 1e-12);
+    CHECK(p["boundary"].get<double>() < 0.3);
+    // Undisturbed gait of the pulse rung: stable (radius < 1) at every duty of the grid.
+    for (const auto& c : p["cells"]) CHECK(c["spectral_radius"].get<double>() < 1.0);
+    CHECK(by["pseudo_rigid"]["available"] == false);
   }
 
   SECTION("quad hopper drop: undamped, so the energy balance holds and no apex exceeds the start") {

@@ -64,6 +64,17 @@ TEST_CASE("map rejects bad input with exit 2 naming file and pointer", "[cli][ma
                   0) == 0);
   CHECK(std::count(err.begin(), err.end(), '\n') == 1);
   CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
+  // A model name that is none of the three (pseudo_rigid is one: the robot in the full model).
+  doc = pronk::test::tiny_map_document();
+  doc["models"] = {"pulse", "pseudo-rigid"};
+  { std::ofstream(d.path + "/model.json") << doc.dump(); }
+  CHECK(run(pronk_exe() + " map " + d.path + "/model.json --out " + d.path + "/o", d.path, &err) ==
+        2);
+  CHECK(err.rfind("pronk: error: " + d.path +
+                      "/model.json: /models/1: expected \"impulse\", \"pulse\" or "
+                      "\"pseudo_rigid\", found string \"pseudo-rigid\"",
+                  0) == 0);
+  CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
   { std::ofstream(d.path + "/good.json") << pronk::test::tiny_map_document().dump(); }
   CHECK(run(pronk_exe() + " map " + d.path + "/good.json --set /trials/count=0", d.path, &err) ==
         2);
@@ -84,11 +95,38 @@ TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli]
   CHECK(summary["type"] == "pronk_map");
   CHECK(summary["totals"]["cells"] == 6);
   CHECK(summary["boundary"]["rows"].size() == 2);
+  CHECK(summary["spectral_radius_method"] == "stride map linearised by central differences");
   const std::string cells = slurp(out + "/cells.csv");
   REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --resume --out " + out, d.path) == 0);
   CHECK(slurp(d.path + "/stdout.txt").find("(0 computed, 6 from the journal)") !=
         std::string::npos);
   CHECK(slurp(out + "/cells.csv") == cells);
+}
+
+TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
+          "[cli][map][pseudo_rigid]") {
+  // One cell, one 6 s trial at 10 % duty (about a second of the full model), no stride map.
+  Dir d;
+  json doc = pronk::test::tiny_map_document(1, 1, 6.0);
+  doc["models"] = {"pulse", "pseudo_rigid"};
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6})");
+  doc["axes"] = {{{"kind", "duty_cycle"}, {"values", {0.1}}}};
+  doc["stability"] = false;
+  { std::ofstream(d.path + "/s.json") << doc.dump(); }
+  std::string err;
+  REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --out " + d.path + "/out", d.path, &err) ==
+          0);
+  const json summary = json::parse(slurp(d.path + "/out/summary.json"));
+  CHECK(summary["models"] == json({"pulse", "pseudo_rigid"}));
+  CHECK(summary["primary_model"] == "pseudo_rigid");
+  CHECK(summary["spectral_radius_method"] == "off");
+  // The two models judge this trial alike (see the engine test for the reasons).
+  CHECK(summary["totals"]["disagreements"] == 0);
+  CHECK(summary["totals"]["stabilized_fraction"]["pulse"] ==
+        summary["totals"]["stabilized_fraction"]["pseudo_rigid"]);
+  const std::string cells = slurp(d.path + "/out/cells.csv");
+  CHECK(cells.find("stabilized_pulse,stabilized_pseudo_rigid,disagreements,pulse_only,"
+                   "pseudo_rigid_only") != std::string::npos);
 }
 
 #ifdef PRONK_MPIEXEC

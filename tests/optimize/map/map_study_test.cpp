@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "optimize/map/map_engine.hpp"
 #include "sim/io/input_error.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
@@ -91,8 +92,11 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
   d["axes"][1] = {{"kind", "disturbance_direction_deg"}, {"values", {0, 90}}};
   CHECK(error_of(d).find("s.json: /axes/1/magnitude: a kick size > 0") == 0);
   d = doc;
-  d["models"] = {"pulse", "pseudo_rigid"};
-  CHECK(error_of(d).find("s.json: /models/1: \"impulse\" or \"pulse\"") == 0);
+  d["models"] = {"pulse", "rigid"};
+  CHECK(error_of(d).find("s.json: /models/1: \"impulse\", \"pulse\" or \"pseudo_rigid\" | "
+                         "string \"rigid\"") == 0);
+  d["models"] = {"pseudo_rigid", "pseudo_rigid"};
+  CHECK(error_of(d).find("s.json: /models: two different models") == 0);
   d = doc;
   d["scene_overrides"].push_back("/pulse/mode=max_force");
   CHECK(error_of(d).find("/pulse/mode: \"duration\"") != std::string::npos);
@@ -103,4 +107,35 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
   d = doc;
   d["axes"] = json::array();
   CHECK(error_of(d).find("s.json: /axes: an array of one or two axes") == 0);
+}
+
+TEST_CASE("a map study may run the robot in the full model (pseudo_rigid)", "[map][input]") {
+  json doc = pronk::test::tiny_map_document();
+  doc["models"] = {"pulse", "pseudo_rigid"};
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6})");
+  const m::MapStudy st = m::parse_map_study(doc, "s.json", ".");
+  REQUIRE(st.models.size() == 2);
+  CHECK(st.models[0] == pronk::scene::ModelKind::kPulse);
+  CHECK(st.primary_model() == pronk::scene::ModelKind::kPseudoRigid);
+  // The scene's "pseudo_rigid" settings are the full model's.
+  CHECK(st.base_scene.pseudo_rigid.legs == pronk::scene::PseudoRigid::Legs::kForce);
+  CHECK(st.base_scene.pseudo_rigid.internal_stiffness == 1e6);
+  CHECK(m::scene_at(st, 0.3, 0, st.primary_model()).model == pronk::scene::ModelKind::kPseudoRigid);
+  // A robot the full model cannot build is an error of the scene, found when the study loads:
+  // four dummy hips of 30 % of the body mass each leave it nothing.
+  json bad = doc;
+  bad["scene_overrides"].push_back(R"(/pseudo_rigid={"hips": "dummy_masses", "dummy_ratio": 0.3})");
+  const std::string e = error_of(bad);
+  CHECK(e.find("case3_legged_pulse.json: /pseudo_rigid: a robot the full model can build | "
+               "dummy masses") != std::string::npos);
+  // Not an error when no model needs the robot.
+  bad["models"] = {"impulse", "pulse"};
+  CHECK(error_of(bad).empty());
+  // Pointer-axis values are checked for a buildable robot too (hips 0.3 m below the CoM
+  // leave spring legs of length 0.25 m no room).
+  json ax = doc;
+  ax["scene_overrides"].back() = R"(/pseudo_rigid={"legs": "spring"})";
+  ax["axes"][1] = {{"kind", "pointer"}, {"pointer", "/legs/length"}, {"values", {0.03, 0.25}}};
+  CHECK(error_of(ax).find("s.json: /axes/1/values/0: a value that makes a robot the full model "
+                          "can build") == 0);
 }
