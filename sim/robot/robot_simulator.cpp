@@ -391,11 +391,13 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   std::vector<int> flight_ids = {kTouchdown, kApex, kFallLow, kFallTilt};
   std::vector<int> stance_ids = {kApex, kFallLow, kFallTilt};
   std::vector<int> armed_ids = {kBottom, kFallLow, kFallTilt};
-  // Rotating hips are driven in flight (they place the legs) and free in stance: a
-  // landed foot's slide is released, so its leg is a strut from the hip to the foot
-  // (spring, damper and actuator along the hip-foot line, a central force through
-  // the hip), as in SLIP and the reduced models; at lift-off the slide takes the
-  // leg again along its current direction.
+  // Rotating hips are driven in flight (they place the legs) and free about their
+  // pitch axis in stance: a landed foot's slide (a line) becomes a slot (a bilateral
+  // plane through the hip containing the leg and the body x axis), so the leg swings
+  // fore-aft over its gripped foot as a strut (spring, damper and actuator along the
+  // hip-foot line) while ab/adduction stays held; at lift-off the slide takes the
+  // leg again along its current direction. (Fully free hips, no slot, were tried:
+  // the four pinned struts make yaw unstable, ~3x per stride.)
   const bool free_stance = model.spring_legs && prs.hip_rotation;
   std::vector<std::unique_ptr<FootEvent>> foot_events;
   if (free_stance) {
@@ -697,7 +699,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       if (have_stride) current.stance_duration = stance_end - current.t_touchdown;
       sys.set_actuators(leg_force, run.push);
     } else if (event >= kFoot) {
-      // A foot lands (its hip is freed) or lifts off (its slide takes the leg along
+      // A foot lands (its hip is freed in pitch) or lifts off (its slide takes the leg along
       // the leg's current direction; the foot's velocity across the line is the
       // hip's to catch). Energy changes are booked as hip work. Feet that crossed
       // together (a symmetric landing) switch together: an event fires only once.
@@ -713,7 +715,17 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const bool lift = i == first ? sys.free(i) : sys.free(i) && z > 0.0;
         pr::Surface& slide = mech.surfaces[model.slide[i]];
         if (land) {
-          slide.nodes.clear();
+          // The hip turns freely about its pitch axis: the foot is held in the plane of
+          // the leg and the body x axis (a slot), so the leg swings fore-aft but not
+          // sideways (ab/adduction held).
+          const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
+          if (nrm.norm() > 1e-6) {
+            slide.type = pr::SurfaceType::kPlane;
+            slide.bilateral = true;
+            slide.direction = nrm.normalized();
+          } else {
+            slide.nodes.clear();
+          }
           sys.set_free(i, true);
         } else if (lift) {
           const pr::BodyFrame f = msys.frames(y)[model.body];
@@ -729,6 +741,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
             slide.direction = f.rotation.transpose() * d;
             run.push[i] = -slide.direction;
           }
+          slide.type = pr::SurfaceType::kLine;
+          slide.bilateral = false;
           slide.nodes = model.mechanism.surfaces[model.slide[i]].nodes;
           sys.set_free(i, false);
         }

@@ -49,9 +49,9 @@ class RobotSystem final : public ode::OdeSystem {
     push_ = push;
   }
   const std::vector<double>& actuator_forces() const { return force_; }
-  /// Frees leg i's hip (stance with rotating hips: the slide is released) or locks
-  /// it. A free leg's actuator pushes along the current foot -> hip line (a central
-  /// force through the hip, like the leg spring), not along `push`.
+  /// Frees leg i's hip (stance with rotating hips: the slide becomes a slot) or
+  /// locks it. A free leg's actuator pushes along the current foot -> hip line (like
+  /// the leg spring), not along `push`.
   void set_free(size_t i, bool free) { free_[i] = free; }
   bool free(size_t i) const { return free_[i]; }
   /// Unit world direction of leg i's actuator push on the body (foot -> hip for a
