@@ -2,6 +2,7 @@
 // zero-rest-length spring (plus optional damper) to its projection on the
 // surface:
 //   plane  one-sided contact: F = -k (n.r) n - b (n.v) n while n.r < 0
+//          (bilateral: on both sides, a slot holding the node in the plane)
 //   line   a prismatic joint:  F = -k (1 - d d^T) r - b (1 - d d^T) v
 //   point  a pivot:            F = -k r - b v
 // with r = x_node - x_surface, v the relative velocity. A grounded plane may add
@@ -38,6 +39,7 @@ struct Surface {
   double damping = 0.0;                                  ///< [N s/m]
   double friction = 0.0;        ///< Coulomb coefficient mu (grounded planes only) [-]
   double slip_velocity = 1e-3;  ///< regularisation velocity v_s of the friction law [m/s]
+  bool bilateral = false;       ///< plane: holds on both sides (no contact, no friction)
 };
 
 }  // namespace pronk::pseudorigid

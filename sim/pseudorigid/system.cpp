@@ -158,9 +158,9 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
   switch (s.type) {
     case SurfaceType::kPlane: {
       const double h = e.dir.dot(e.r);
-      if (h >= 0.0) return e;
+      if (h >= 0.0 && !s.bilateral) return e;
       e.proj = e.dir * e.dir.transpose();
-      e.penetration = -h;
+      e.penetration = std::abs(h);
       break;
     }
     case SurfaceType::kLine:
@@ -207,7 +207,7 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the direction [N m]
   switch (s.type) {
     case SurfaceType::kPlane:
-      if (dir.dot(r) >= 0.0) return;
+      if (dir.dot(r) >= 0.0 && !s.bilateral) return;
       proj = dir * dir.transpose();
       tau = -s.stiffness * dir.dot(r) * dir.cross(r);
       break;

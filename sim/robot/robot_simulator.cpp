@@ -53,13 +53,24 @@ class SpringReboundController final : public control::BodyController {
  public:
   /// push: the legs' common push direction, body frame (prismatic legs push only
   /// along it, so the linear request is projected on it before allocation).
-  SpringReboundController(const control::BodyController& inner, double mass, const Vector3d* push)
-      : inner_(inner), mass_(mass), push_(push) {}
+  /// hips: mean hip position, body frame [m]; gravity [m/s^2]; stance: expected
+  /// stance duration [s] (0: the springs' moment is not compensated).
+  SpringReboundController(const control::BodyController& inner, double mass, const Vector3d* push,
+                          const Vector3d& hips, double gravity, const double* stance)
+      : inner_(inner), mass_(mass), push_(push), hips_(hips), gravity_(gravity), stance_(stance) {}
   control::BodyCommand command(double t, const control::BodyState& s) const override {
     control::BodyCommand c = inner_.command(t, s);
-    c.P_world.z() += 2.0 * mass_ * std::min(0.0, s.velocity.z());
+    const double rebound = -2.0 * mass_ * std::min(0.0, s.velocity.z());  // [N s]
+    c.P_world.z() -= rebound;
     const Vector3d d = s.rotation * *push_;
     c.P_world = c.P_world.dot(d) * d;
+    // The springs' impulse (rebound plus the weight over the stance) acts along the
+    // legs at the hips, off the CoM when the legs lean: its moment is the actuators'
+    // to cancel, or it pitches the body (legs at the hips below the CoM).
+    if (d.z() > 0.1) {
+      const Vector3d P_springs = (rebound + mass_ * gravity_ * *stance_) / d.z() * d;
+      c.H_body -= hips_.cross(s.rotation.transpose() * P_springs);
+    }
     return c;
   }
 
@@ -67,6 +78,9 @@ class SpringReboundController final : public control::BodyController {
   const control::BodyController& inner_;
   double mass_;
   const Vector3d* push_;
+  Vector3d hips_;
+  double gravity_;
+  const double* stance_;
 };
 
 class ComHeightEvent final : public ode::EventFunction {
@@ -99,6 +113,20 @@ class BottomEvent final : public ode::EventFunction {
   const RobotModel& m_;
 };
 
+/// A foot crossing the ground plane z = 0: falling while its hip is locked (the
+/// foot lands: the hip is freed), rising while it is free (lift-off: locked again).
+class FootEvent final : public ode::EventFunction {
+ public:
+  FootEvent(const RobotSystem& sys, size_t leg, int foot) : sys_(sys), leg_(leg), foot_(foot) {}
+  double value(double, const ode::Vec& y) const override { return y[6 * foot_ + 2]; }
+  int direction() const override { return sys_.free(leg_) ? 1 : -1; }
+
+ private:
+  const RobotSystem& sys_;
+  size_t leg_;
+  int foot_;
+};
+
 class TiltEvent final : public ode::EventFunction {
  public:
   TiltEvent(const RobotModel& m, const pr::MechanismSystem& sys, double max_tilt)
@@ -129,6 +157,7 @@ struct Run {
   std::vector<bool> in_contact;
   std::vector<Eigen::Vector2d> contact_start;
   double stride_slip = 0.0;
+  double contact_begin = 0.0;  ///< free stance hips: first foot landing of this stance [s]
 
   control::BodyState body_state(const ode::Vec& y) const {
     const pr::BodyFrame& f = msys.frames(y)[model.body];
@@ -161,7 +190,7 @@ struct Run {
     rs.actuator_force = sys.actuator_forces();
     for (size_t i = 0; i < model.hip.size(); ++i) {
       // Σ actuator forces on the body (world), as the reduced models' leg force.
-      smp.leg_force_world += rs.actuator_force[i] * (s.rotation * push[i]);
+      smp.leg_force_world += rs.actuator_force[i] * sys.push_world(i, y);
     }
     if (model.spring_legs) {
       rs.normal_force = sys.normal_forces(y);
@@ -251,6 +280,23 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
   return u;
 }
 
+/// Leg placement for free stance hips (world frame, unit hip -> foot): the leg,
+/// a strut from hip to foot during the stance, pushes along its mean direction,
+/// so the foot is put where the mean foot -> hip line over the stance is parallel
+/// to the net impulse the ground must give, P = P_legs + m g T_s (world [N s]):
+/// half the stance's horizontal travel ahead of that, v T_s / 2 (Raibert's
+/// neutral point, corrected by the impulse's tilt). v: horizontal CoM velocity
+/// at touchdown [m/s]; stance: expected stance duration T_s [s]; leg: leg length
+/// [m]; max_angle: limit from the vertical [rad].
+Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
+                            double max_angle) {
+  Eigen::Vector2d r = 0.5 * stance * v.head<2>();
+  if (P.z() > 1e-12) r -= leg * P.head<2>() / P.norm();
+  const double r_max = leg * std::sin(max_angle);
+  if (r.norm() > r_max) r *= r_max / r.norm();
+  return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+}
+
 }  // namespace
 
 RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& options) {
@@ -274,6 +320,15 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   plan_scene.model = scene::ModelKind::kPulse;
   if (model.spring_legs) plan_scene.pulse.gravity_compensation = false;
   Vector3d common_push = Vector3d::UnitZ();  // legs' push direction, body frame
+  Vector3d mean_hip = Vector3d::Zero();      // body frame [m]
+  for (const Vector3d& h : model.hip) mean_hip += h / static_cast<double>(model.hip.size());
+  // Expected stance duration of spring legs [s]: half a period of the body on its leg
+  // springs until a stance is measured (free stance hips measure every stance).
+  double spring_stance =
+      model.spring_legs
+          ? M_PI * std::sqrt(scene.body.mass /
+                             (prs.leg_stiffness * static_cast<double>(model.hip.size())))
+          : 0.0;
   // One controller per hop-height setpoint (controller.hop_height_changes).
   struct Layer {
     std::unique_ptr<scene::Scene> scene;
@@ -290,7 +345,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     L.pd = std::make_unique<control::PdBodyController>(
         L.scene->controller, g, l, !scene.legs.body_only, false,
         L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
-    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push);
+    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push,
+                                                          mean_hip, g, &spring_stance);
     L.legs = control::make_leg_controller(*L.scene);
     L.from = from;
     layers.push_back(std::move(L));
@@ -328,13 +384,33 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   ComHeightEvent fall_low(model, sim.fall_min_height);
   TiltEvent fall_tilt(model, msys, sim.fall_max_tilt);
   BottomEvent bottom(model);
-  const ode::EventFunction* flight_events[] = {&touchdown, &apex, &fall_low, &fall_tilt};
-  const ode::EventFunction* stance_events[] = {&apex, &fall_low, &fall_tilt};
-  const ode::EventFunction* armed_events[] = {&bottom, &fall_low, &fall_tilt};
-  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3, kBottom = 4 };
-  const int flight_ids[] = {kTouchdown, kApex, kFallLow, kFallTilt};
-  const int stance_ids[] = {kApex, kFallLow, kFallTilt};
-  const int armed_ids[] = {kBottom, kFallLow, kFallTilt};
+  std::vector<const ode::EventFunction*> flight_events = {&touchdown, &apex, &fall_low, &fall_tilt};
+  std::vector<const ode::EventFunction*> stance_events = {&apex, &fall_low, &fall_tilt};
+  std::vector<const ode::EventFunction*> armed_events = {&bottom, &fall_low, &fall_tilt};
+  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3, kBottom = 4, kFoot = 5 };
+  std::vector<int> flight_ids = {kTouchdown, kApex, kFallLow, kFallTilt};
+  std::vector<int> stance_ids = {kApex, kFallLow, kFallTilt};
+  std::vector<int> armed_ids = {kBottom, kFallLow, kFallTilt};
+  // Rotating hips are driven in flight (they place the legs) and free about their
+  // pitch axis in stance: a landed foot's slide (a line) becomes a slot (a bilateral
+  // plane through the hip containing the leg and the body x axis), so the leg swings
+  // fore-aft over its gripped foot as a strut (spring, damper and actuator along the
+  // hip-foot line) while ab/adduction stays held; at lift-off the slide takes the
+  // leg again along its current direction. (Fully free hips, no slot, were tried:
+  // the four pinned struts make yaw unstable, ~3x per stride.)
+  const bool free_stance = model.spring_legs && prs.hip_rotation;
+  std::vector<std::unique_ptr<FootEvent>> foot_events;
+  if (free_stance) {
+    for (size_t i = 0; i < legs; ++i) {
+      foot_events.push_back(std::make_unique<FootEvent>(sys, i, model.foot[i]));
+      for (auto* list : {&flight_events, &stance_events, &armed_events}) {
+        list->push_back(foot_events.back().get());
+      }
+      for (auto* list : {&flight_ids, &stance_ids, &armed_ids}) {
+        list->push_back(kFoot + static_cast<int>(i));
+      }
+    }
+  }
   // Spring legs: the actuators fire in the thrust phase, from the bottom of the
   // stance (CoM velocity rising through zero) on, so a downward force lowers the
   // takeoff speed and an upward one raises it (seed fig. 2.13).
@@ -380,8 +456,70 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     have_stride = false;
   };
 
+  // Hip placement (hip_rotation): plan the stance at the predicted (ballistic)
+  // touchdown and turn each leg in the air to its placement; the foot moves with the
+  // leg (its energy change is hip work).
+  auto place_legs = [&](double t, ode::Vec& y) {
+    // Hip placement: plan the stance at the predicted (ballistic) touchdown and turn
+    // each leg along its total impulse; the foot moves with the leg (its energy
+    // change is hip work).
+    control::BodyState s = run.body_state(y);
+    const double dz = s.position.z() - l;
+    if (dz > 0.0) {
+      const double tf = std::sqrt(2.0 * dz / g);
+      s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
+      s.velocity.z() -= g * tf;
+      const control::StancePlan pred =
+          control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
+      std::vector<Vector3d> u;
+      if (free_stance) {
+        // The legs' total push plus the weight carried over the stance, placed in
+        // the world and turned into the body frame the body will have at touchdown.
+        Vector3d P = pred.command.P_world;
+        P.z() += total_mass * g * spring_stance;
+        // The hips' mean speed over the stance: the CoM's plus half the change asked.
+        const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass;
+        const Vector3d d =
+            free_leg_direction(P, v_mean, spring_stance, model.rest_length[0], prs.max_leg_angle);
+        const Vector3d w_world = msys.body_omega(model.body, y);
+        Matrix3d R_td = msys.frames(y)[model.body].rotation;
+        if (w_world.norm() * tf > 1e-12) {
+          R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
+        }
+        u.assign(legs, R_td.transpose() * d);
+      } else {
+        u = leg_directions(pred, legs, prs.max_leg_angle);
+      }
+      const double e_before = msys.energies(y).total();
+      const pr::BodyFrame f = msys.frames(y)[model.body];
+      const Vector3d w = msys.body_omega(model.body, y);
+      for (size_t i = 0; i < legs; ++i) {
+        if (sys.free(i)) continue;  // still on the ground
+        const int foot = model.foot[i];
+        const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, mech.surfaces[model.slide[i]].ghost};
+        const Vector3d hip = msys.node_position(ghost, y);
+        const Vector3d d_old = f.rotation * (-run.push[i]);
+        const Vector3d d_new = f.rotation * u[i];
+        const Vector3d xf = y.segment<3>(6 * foot);
+        const double ext = (xf - hip).dot(d_old);
+        const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
+                              (f.com_velocity + w.cross(xf - f.com));
+        const Vector3d xn = hip + ext * d_new;
+        const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
+        y.segment<3>(6 * foot) = xn;
+        y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * vn;
+        mech.surfaces[model.slide[i]].direction = u[i];
+        run.push[i] = -u[i];
+      }
+      common_push = -u[0];  // (a leg still on the ground keeps its direction)
+      result.monitors.hip_work += msys.energies(y).total() - e_before;
+    }
+  };
+
   double t = 0.0;
   size_t next_disturbance = 0;
+  // A run starting in the air places its legs for the first touchdown.
+  if (model.spring_legs && prs.hip_rotation) place_legs(t, y);
   stepper->reset(sys, t, y);
   observer.start(y);
   bool running = true;
@@ -399,7 +537,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         armed        ? std::span<const ode::EventFunction* const>(armed_events)
         : run.stance ? std::span<const ode::EventFunction* const>(stance_events)
                      : std::span<const ode::EventFunction* const>(flight_events);
-    const int* ids = armed ? armed_ids : run.stance ? stance_ids : flight_ids;
+    const int* ids = armed ? armed_ids.data() : run.stance ? stance_ids.data() : flight_ids.data();
     ode::IntegrateResult r;
     if (t_target > t) {
       r = ode::integrate(sys, *stepper, t_target, events, prs.solver, &observer);
@@ -466,43 +604,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         result.monitors.max_leg_vibration_energy =
             std::max(result.monitors.max_leg_vibration_energy, e);
       }
-      if (!run.stance && model.spring_legs && prs.hip_rotation) {
-        // Hip placement: plan the stance at the predicted (ballistic) touchdown and turn
-        // each leg along its total impulse; the foot moves with the leg (its energy
-        // change is hip work).
-        control::BodyState s = run.body_state(y);
-        const double dz = s.position.z() - l;
-        if (dz > 0.0) {
-          const double tf = std::sqrt(2.0 * dz / g);
-          s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
-          s.velocity.z() -= g * tf;
-          const control::StancePlan pred =
-              control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
-          const std::vector<Vector3d> u = leg_directions(pred, legs, prs.max_leg_angle);
-          const double e_before = msys.energies(y).total();
-          const pr::BodyFrame f = msys.frames(y)[model.body];
-          const Vector3d w = msys.body_omega(model.body, y);
-          for (size_t i = 0; i < legs; ++i) {
-            const int foot = model.foot[i];
-            const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, mech.surfaces[model.slide[i]].ghost};
-            const Vector3d hip = msys.node_position(ghost, y);
-            const Vector3d d_old = f.rotation * (-run.push[i]);
-            const Vector3d d_new = f.rotation * u[i];
-            const Vector3d xf = y.segment<3>(6 * foot);
-            const double ext = (xf - hip).dot(d_old);
-            const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
-                                  (f.com_velocity + w.cross(xf - f.com));
-            const Vector3d xn = hip + ext * d_new;
-            const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
-            y.segment<3>(6 * foot) = xn;
-            y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * vn;
-            mech.surfaces[model.slide[i]].direction = u[i];
-            run.push[i] = -u[i];
-          }
-          common_push = -u[0];
-          result.monitors.hip_work += msys.energies(y).total() - e_before;
-        }
-      }
+      if (!run.stance && model.spring_legs && prs.hip_rotation) place_legs(t, y);
     } else if (event == kTouchdown) {
       finish_stride(t);
       ++touchdown_events;
@@ -596,6 +698,61 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       }
       if (have_stride) current.stance_duration = stance_end - current.t_touchdown;
       sys.set_actuators(leg_force, run.push);
+    } else if (event >= kFoot) {
+      // A foot lands (its hip is freed in pitch) or lifts off (its slide takes the leg along
+      // the leg's current direction; the foot's velocity across the line is the
+      // hip's to catch). Energy changes are booked as hip work. Feet that crossed
+      // together (a symmetric landing) switch together: an event fires only once.
+      const size_t first = static_cast<size_t>(event - kFoot);
+      const double e_before = msys.energies(y).total();
+      bool any_free = false;
+      for (size_t k = 0; k < legs; ++k) any_free = any_free || sys.free(k);
+      const bool was_free = any_free;
+      for (size_t i = 0; i < legs; ++i) {
+        const int foot = model.foot[i];
+        const double z = y[6 * foot + 2];
+        const bool land = i == first ? !sys.free(i) : !sys.free(i) && z <= 0.0;
+        const bool lift = i == first ? sys.free(i) : sys.free(i) && z > 0.0;
+        pr::Surface& slide = mech.surfaces[model.slide[i]];
+        if (land) {
+          // The hip turns freely about its pitch axis: the foot is held in the plane of
+          // the leg and the body x axis (a slot), so the leg swings fore-aft but not
+          // sideways (ab/adduction held).
+          const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
+          if (nrm.norm() > 1e-6) {
+            slide.type = pr::SurfaceType::kPlane;
+            slide.bilateral = true;
+            slide.direction = nrm.normalized();
+          } else {
+            slide.nodes.clear();
+          }
+          sys.set_free(i, true);
+        } else if (lift) {
+          const pr::BodyFrame f = msys.frames(y)[model.body];
+          const Vector3d w = msys.body_omega(model.body, y);
+          const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, slide.ghost};
+          const Vector3d xf = y.segment<3>(6 * foot);
+          const Vector3d arm = xf - msys.node_position(ghost, y);
+          if (arm.norm() > 1e-9) {
+            const Vector3d d = arm.normalized();
+            const Vector3d vb = f.com_velocity + w.cross(xf - f.com);
+            const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass - vb;
+            y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * (vb + vrel.dot(d) * d);
+            slide.direction = f.rotation.transpose() * d;
+            run.push[i] = -slide.direction;
+          }
+          slide.type = pr::SurfaceType::kLine;
+          slide.bilateral = false;
+          slide.nodes = model.mechanism.surfaces[model.slide[i]].nodes;
+          sys.set_free(i, false);
+        }
+      }
+      any_free = false;
+      for (size_t k = 0; k < legs; ++k) any_free = any_free || sys.free(k);
+      if (any_free && !was_free) run.contact_begin = t;
+      if (!any_free && was_free) spring_stance = t - run.contact_begin;
+      sys.set_actuators(leg_force, run.push);
+      result.monitors.hip_work += msys.energies(y).total() - e_before;
     } else {
       // Reached t_target: an actuator switching off, a disturbance, or the end.
       if (run.stance && !armed) {

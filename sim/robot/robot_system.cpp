@@ -1,5 +1,6 @@
 #include "sim/robot/robot_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pronk::robot {
@@ -13,7 +14,8 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
       settings_(settings),
       sys_(mechanism),
       force_(model.hip.size(), 0.0),
-      push_(model.hip.size(), Vector3d::UnitZ()) {
+      push_(model.hip.size(), Vector3d::UnitZ()),
+      free_(model.hip.size(), false) {
   for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   const int nm = static_cast<int>(mechanism.masses.size());
   extra_ = fp_ = fm_ = ode::Vec::Zero(3 * nm);
@@ -27,6 +29,14 @@ double RobotSystem::normal_force(const ode::Vec& y, int foot) const {
   return std::max(0.0, -g.stiffness * z - g.damping * vz);
 }
 
+Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
+  const Eigen::Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+  if (!free_[i] || model_.foot[i] < 0) return R * push_[i];
+  const Vector3d d = sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i]);
+  const double len = d.norm();
+  return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
+}
+
 bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   bool any = false;
   for (size_t i = 0; i < force_.size(); ++i) any = any || force_[i] != 0.0;
@@ -35,10 +45,9 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   f.setZero();
   if (any) {
     const auto& body = model_.mechanism.bodies[model_.body];
-    const Eigen::Matrix3d& R = sys_.frames(y)[model_.body].rotation;
     for (size_t i = 0; i < force_.size(); ++i) {
       if (force_[i] == 0.0) continue;
-      const Vector3d F = force_[i] * (R * push_[i]);  // on the body at the hip
+      const Vector3d F = force_[i] * push_world(i, y);  // on the body at the hip
       const pr::NodeRef& h = model_.hip_node[i];
       if (h.kind == pr::NodeRef::Kind::kMass) {
         f.segment<3>(3 * h.index) += F;
@@ -82,6 +91,15 @@ void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<doub
     for (int k = 0; k < 4; ++k) {
       for (int c = 0; c < 3; ++c) cols.push_back(6 * (first + k) + c);
     }
+    // A free leg's push direction follows its foot (and a dummy hip mass).
+    for (size_t i = 0; i < force_.size(); ++i) {
+      if (force_[i] == 0.0 || !free_[i] || model_.foot[i] < 0) continue;
+      for (int c = 0; c < 3; ++c) cols.push_back(6 * model_.foot[i] + c);
+      const pr::NodeRef& h = model_.hip_node[i];
+      if (h.kind == pr::NodeRef::Kind::kMass) {
+        for (int c = 0; c < 3; ++c) cols.push_back(6 * h.index + c);
+      }
+    }
   }
   if (settings_.friction > 0.0 && model_.spring_legs) {
     for (int foot : model_.foot) {
@@ -89,6 +107,8 @@ void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<doub
       for (int c : {2, 3, 4, 5}) cols.push_back(6 * foot + c);
     }
   }
+  std::sort(cols.begin(), cols.end());  // each column once (central differences add up)
+  cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
   triplets_.clear();
   yp_ = y;
   const int nm = static_cast<int>(inv_mass_.size());

@@ -1,6 +1,7 @@
 // The robot as an ODE system: the mechanism's own forces (MechanismSystem) plus
 // the run-time inputs a controller drives: leg actuator forces (along each leg,
-// on the hip and, for spring legs, the opposite force on the foot) and Coulomb
+// on the hip and, for spring legs, the opposite force on the foot; along the
+// current foot -> hip line while the leg's hip is free) and Coulomb
 // friction on the feet, regularised F_t = -mu N v_t / sqrt(|v_t|^2 + v_s^2)
 // with N the ground's normal force. The Jacobian is the mechanism's analytic one
 // plus central differences of these extra forces over the states they read.
@@ -48,6 +49,14 @@ class RobotSystem final : public ode::OdeSystem {
     push_ = push;
   }
   const std::vector<double>& actuator_forces() const { return force_; }
+  /// Frees leg i's hip (stance with rotating hips: the slide becomes a slot) or
+  /// locks it. A free leg's actuator pushes along the current foot -> hip line (like
+  /// the leg spring), not along `push`.
+  void set_free(size_t i, bool free) { free_[i] = free; }
+  bool free(size_t i) const { return free_[i]; }
+  /// Unit world direction of leg i's actuator push on the body (foot -> hip for a
+  /// free leg, R push otherwise).
+  Eigen::Vector3d push_world(size_t i, const ode::Vec& y) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
   ExtraPower power(const ode::Vec& y) const;
@@ -66,6 +75,7 @@ class RobotSystem final : public ode::OdeSystem {
   pseudorigid::MechanismSystem sys_;
   std::vector<double> force_;
   std::vector<Eigen::Vector3d> push_;
+  std::vector<bool> free_;
   std::vector<double> inv_mass_;
   mutable ode::Vec extra_, fp_, fm_;
   mutable ode::Vec yp_;

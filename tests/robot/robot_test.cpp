@@ -3,6 +3,7 @@
 // same robot (fidelity agreement at ~15 % duty cycle).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -206,4 +207,29 @@ TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[r
     CHECK(std::abs(rd.run.strides[k].apex_height - rg.run.strides[k].apex_height) < 0.01);
   }
   CHECK(rd.monitors.energy_drift <= 1e-5 * rd.monitors.energy_scale);
+}
+
+// Issue 4's running criterion: from 10 deg roll and 0.2 m lateral offset the full
+// model runs after a setpoint moving at 0.3 m/s for 10 s without falling, attitude
+// within 5 deg and lateral error within 2 cm after settling (the last 5 s), no foot
+// sliding more than 1 cm per stance. NOT MET YET: the spring stance is unstable in
+// roll/lateral (period-2 growth ~3x per stride; see README, "Limits (open)"), so the
+// run falls at t ~ 1.7 s. Marked [!mayfail] so it reports without failing the suite.
+TEST_CASE("robot runs after a moving setpoint in the full model (pr_running)",
+          "[robot][!mayfail]") {
+  const scene::Scene s = load("pr_running.json");
+  REQUIRE(s.simulation.duration >= 10.0);
+  const robot::RobotRunResult r = robot::simulate(s);
+  REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
+  double max_tilt = 0.0, max_lateral = 0.0;
+  for (const auto& smp : r.run.trajectory) {
+    if (smp.t < 5.0) continue;
+    max_tilt = std::max({max_tilt, std::abs(smp.euler123.x()), std::abs(smp.euler123.y())});
+    max_lateral = std::max(max_lateral, std::abs(smp.position.y() - smp.setpoint.y()));
+  }
+  CHECK(max_tilt <= 5.0 * kDeg);
+  CHECK(max_lateral <= 0.02);
+  for (double slip : r.stride_slip) CHECK(slip <= 0.01);
+  CHECK(r.monitors.max_slip <= 0.01);
+  CHECK(r.monitors.energy_drift <= 1e-3 * r.monitors.energy_scale);
 }
