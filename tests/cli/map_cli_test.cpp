@@ -135,8 +135,10 @@ TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
 /// exit status of 1: leak checking is switched off for the ranks only (-x passes it on);
 /// address and undefined-behaviour checks stay on, and every other test checks leaks.
 std::string mpirun_np2() {
-  return "ASAN_OPTIONS=detect_leaks=0 " + std::string(PRONK_MPIEXEC) +
-         " -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ";
+  std::string cmd = "ASAN_OPTIONS=detect_leaks=0 ";
+  cmd.append(PRONK_MPIEXEC);
+  cmd.append(" -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ");
+  return cmd;
 }
 
 TEST_CASE("mpirun -np 2 pronk map writes the threaded run's bytes", "[cli][map][mpi]") {

@@ -20,7 +20,11 @@ using nlohmann::json;
 
 namespace {
 
-std::string scenes_dir() { return std::string(PRONK_SOURCE_DIR) + "/studies/scenes"; }
+std::string scenes_dir() {
+  std::string dir = PRONK_SOURCE_DIR;
+  dir.append("/studies/scenes");  // (operator+ here trips GCC 12's false -Wstringop-overflow)
+  return dir;
+}
 
 // A small study over the legged impulse robot (fast: a few ms per evaluation).
 json small_study(const std::string& algorithm = "LN_BOBYQA", long evals = 30) {
