@@ -7,6 +7,23 @@
 
 namespace pronk::ode::detail {
 
+/// Cubic Hermite interpolation at t on the step [t0, t1] through (y0, f0) and (y1, f1)
+/// (the dense output of the fixed-step methods); y_out = y1 when the step is empty.
+inline void hermite_dense(double t, double t0, double t1, const Vec& y0, const Vec& f0,
+                          const Vec& y1, const Vec& f1, Vec& y_out) {
+  const double h = t1 - t0;
+  y_out.resize(y1.size());
+  if (!(h > 0.0)) {
+    y_out = y1;
+    return;
+  }
+  const double s = (t - t0) / h;
+  const double s2 = s * s;
+  const double s3 = s2 * s;
+  y_out.noalias() = (2.0 * s3 - 3.0 * s2 + 1.0) * y0 + ((s3 - 2.0 * s2 + s) * h) * f0 +
+                    (-2.0 * s3 + 3.0 * s2) * y1 + ((s3 - s2) * h) * f1;
+}
+
 /// Euler, RK2 midpoint or RK4 with fixed step options.h_fixed [s] and cubic
 /// Hermite dense output. options.method must be a fixed-step method.
 std::unique_ptr<Stepper> make_explicit_rk_stepper(const SolverOptions& options, int n);

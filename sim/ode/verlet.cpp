@@ -97,21 +97,7 @@ class VerletStepper final : public Stepper {
   }
 
   void dense(double t, Vec& y_out) const override {
-    const double h = t_ - t_prev_;
-    if (!(h > 0.0)) {
-      y_out = y_;
-      return;
-    }
-    // Cubic Hermite through both ends and their slopes.
-    const double s = (t - t_prev_) / h;
-    const double s2 = s * s;
-    const double s3 = s2 * s;
-    const double h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
-    const double h10 = (s3 - 2.0 * s2 + s) * h;
-    const double h01 = -2.0 * s3 + 3.0 * s2;
-    const double h11 = (s3 - s2) * h;
-    y_out.resize(y_.size());
-    y_out.noalias() = h00 * y_prev_ + h10 * f_prev_ + h01 * y_ + h11 * f_;
+    hermite_dense(t, t_prev_, t_, y_prev_, f_prev_, y_, f_, y_out);
   }
 
   double t() const override { return t_; }
