@@ -128,7 +128,7 @@ const TempDir& quick_bench(int* code, std::string* err) {
 }  // namespace
 
 TEST_CASE("pronk bench --quick writes complete, finite results that match the references",
-          "[cli][bench]") {
+          "[cli][bench][heavy]") {
   int code = -1;
   std::string err;
   const TempDir& dir = quick_bench(&code, &err);

@@ -104,7 +104,7 @@ TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli]
 }
 
 TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
-          "[cli][map][pseudo_rigid]") {
+          "[cli][map][pseudo_rigid][heavy]") {
   // One cell, one 6 s trial at 10 % duty (about a second of the full model), no stride map.
   Dir d;
   json doc = pronk::test::tiny_map_document(1, 1, 6.0);

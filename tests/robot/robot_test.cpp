@@ -59,7 +59,7 @@ TEST_CASE("robot case 5: ghost-point hips, fixed-duration pulses, reaches and ho
   }
 }
 
-TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights stay", "[robot]") {
+TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights stay", "[robot][heavy]") {
   const scene::Scene s = load("case6_pr_drop.json");
   const robot::RobotRunResult r = robot::simulate(s);
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
@@ -86,7 +86,7 @@ TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights sta
   CHECK(r.monitors.max_penetration < 0.005);
 }
 
-TEST_CASE("robot case 7: hop-height change settles, foot forces lower then raise", "[robot]") {
+TEST_CASE("robot case 7: hop-height change settles, foot forces lower then raise", "[robot][heavy]") {
   const scene::Scene s = load("case7_pr_height_change.json");
   const robot::RobotRunResult r = robot::simulate(s);
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
@@ -192,7 +192,7 @@ TEST_CASE("robot scene: pseudo_rigid settings load, round-trip and are listed as
   }
 }
 
-TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[robot]") {
+TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[robot][heavy]") {
   const scene::Scene g = load("case5_pr_hop_height.json", {"/simulation/duration=2.5"});
   const scene::Scene d = load("case5_pr_hop_height.json",
                               {"/simulation/duration=2.5", "/pseudo_rigid/hips=\"dummy_masses\""});
@@ -216,7 +216,7 @@ TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[r
 // roll/lateral (period-2 growth ~3x per stride; see README, "Limits (open)"), so the
 // run falls at t ~ 1.7 s. Marked [!mayfail] so it reports without failing the suite.
 TEST_CASE("robot runs after a moving setpoint in the full model (pr_running)",
-          "[robot][!mayfail]") {
+          "[robot][heavy][!mayfail]") {
   const scene::Scene s = load("pr_running.json");
   REQUIRE(s.simulation.duration >= 10.0);
   const robot::RobotRunResult r = robot::simulate(s);

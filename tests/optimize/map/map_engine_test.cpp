@@ -192,7 +192,7 @@ TEST_CASE("row seeding shares a row's disturbances, cell seeding draws per cell"
 }
 
 TEST_CASE("a pseudo-rigid map trial agrees with the pulse model's verdict at low duty",
-          "[map][pseudo_rigid]") {
+          "[map][pseudo_rigid][heavy]") {
   // The robot in the full model with force legs and stiff (1e6 N/m) body springs is the
   // pulse model's rigid body on massless legs up to the body's elasticity: at 12 % duty
   // (far below the seed's ~29 % limit) both models must judge every trial alike. Trials of
