@@ -59,7 +59,8 @@ TEST_CASE("robot case 5: ghost-point hips, fixed-duration pulses, reaches and ho
   }
 }
 
-TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights stay", "[robot][heavy]") {
+TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights stay",
+          "[robot][heavy]") {
   const scene::Scene s = load("case6_pr_drop.json");
   const robot::RobotRunResult r = robot::simulate(s);
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
@@ -86,7 +87,8 @@ TEST_CASE("robot case 6: leg-spring drop test conserves energy, apex heights sta
   CHECK(r.monitors.max_penetration < 0.005);
 }
 
-TEST_CASE("robot case 7: hop-height change settles, foot forces lower then raise", "[robot][heavy]") {
+TEST_CASE("robot case 7: hop-height change settles, foot forces lower then raise",
+          "[robot][heavy]") {
   const scene::Scene s = load("case7_pr_height_change.json");
   const robot::RobotRunResult r = robot::simulate(s);
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
