@@ -645,9 +645,9 @@ int run_bench(const BenchArgs& args) {
     }
     std::vector<Series> s;
     for (auto& [k, v] : by) s.push_back(v);
-    const std::string script = loglog_script(
-        "quad_hopper_work_precision", "Quad spring hopper drop (undamped): energy error vs cost",
-        "CPU time per simulated second [s/s]", "energy error / drop energy", s);
+    const std::string script =
+        loglog_script("quad_hopper_work_precision", "Quad spring hopper drop: energy error vs cost",
+                      "CPU time per simulated second [s/s]", "energy error / drop energy", s);
     if (!script.empty()) io::render_figure(dir, "quad_hopper_work_precision", script);
   }
   {  // fixed-step convergence on the hopper

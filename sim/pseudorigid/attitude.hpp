@@ -22,8 +22,11 @@ struct BodyFrame {
 /// decomposition of M = sum (x_i - c) local_i^T (Newton iteration), or, when M
 /// is singular or reflecting, from its SVD with the reflection mapped to the
 /// nearest proper rotation.
+/// `start`: a rotation near the answer (the frame of a nearby state) to begin
+/// the iteration from; without it the start is taken from M itself.
 BodyFrame fit_attitude(const std::array<Eigen::Vector3d, 4>& x,
-                       const std::array<Eigen::Vector3d, 4>& local);
+                       const std::array<Eigen::Vector3d, 4>& local,
+                       const Eigen::Matrix3d* start = nullptr);
 
 /// Least-squares angular velocity (world frame) [rad/s] from mass positions and
 /// velocities: argmin sum |v_i - v_c - w x (x_i - c)|^2.

@@ -238,34 +238,64 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   }
 }
 
-void MechanismSystem::attached_surface_jacobian(const Surface& s, const NodeRef& n,
-                                                const ode::Vec& y) const {
+void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const {
+  // The active (surface, node) pairs on body b, and the masses they involve: the
+  // body's four (their motion turns the surfaces) and the constrained nodes'.
+  std::vector<std::pair<const Surface*, NodeRef>> pairs;
+  bool damped = false;
+  for (const Surface& s : m_.surfaces) {
+    if (s.body != b) continue;
+    for (const NodeRef& n : s.nodes) {
+      if (!eval_surface(s, n, y).active) continue;
+      pairs.emplace_back(&s, n);
+      damped = damped || s.damping > 0.0;
+    }
+  }
+  if (pairs.empty()) return;
+  const Body& body = m_.bodies[b];
+  const int fb = body.first_mass;
   std::vector<int> masses;
-  const int fb = m_.bodies[s.body].first_mass;
   for (int i = 0; i < 4; ++i) masses.push_back(fb + i);
-  if (n.kind == NodeRef::Kind::kMass) {
-    masses.push_back(n.index);
-  } else if (n.kind == NodeRef::Kind::kGhost) {
-    const int fn = m_.bodies[m_.ghost_points[n.index].body].first_mass;
-    for (int i = 0; i < 4; ++i) masses.push_back(fn + i);
+  for (const auto& pair : pairs) {
+    const NodeRef& n = pair.second;
+    if (n.kind == NodeRef::Kind::kMass) {
+      masses.push_back(n.index);
+    } else if (n.kind == NodeRef::Kind::kGhost) {
+      const int fn = m_.bodies[m_.ghost_points[n.index].body].first_mass;
+      for (int i = 0; i < 4; ++i) masses.push_back(fn + i);
+    }
   }
   std::sort(masses.begin(), masses.end());
   masses.erase(std::unique(masses.begin(), masses.end()), masses.end());
+  // Central differences, one column at a time, all pairs at once. Only a position
+  // column of one of the body's own masses turns the frame; it is refitted from
+  // the unperturbed frame (Newton converges in one or two steps from there).
   ode::Vec yp = y;
   std::vector<std::pair<int, Vector3d>> fp, fm;
   std::vector<Vector3d> diff(m_.masses.size());
-  // Momenta enter only through the damper: without one, position columns suffice.
-  const int columns = s.damping > 0.0 ? 6 : 3;
+  const BodyFrame& frame0 = frames_[b];
+  auto forces = [&](const ode::Vec& yy, bool refit, std::vector<std::pair<int, Vector3d>>& out) {
+    out.clear();
+    BodyFrame frame = frame0;
+    if (refit) {
+      std::array<Vector3d, 4> x;
+      for (int i = 0; i < 4; ++i) x[i] = seg(yy, 6 * (fb + i));
+      frame = fit_attitude(x, body.local, &frame0.rotation);
+    }
+    for (const auto& [s, n] : pairs) attached_surface_forces(*s, n, yy, out, &frame);
+  };
+  // Momenta enter only through the dampers: without one, position columns suffice.
+  const int columns = damped ? 6 : 3;
   for (int mass : masses) {
+    const bool own = mass >= fb && mass < fb + 4;
     for (int c = 0; c < columns; ++c) {
       const int col = 6 * mass + c;
       const double h = 1e-6 * (1.0 + std::abs(y[col]));
-      fp.clear();
-      fm.clear();
+      const bool refit = own && c < 3;
       yp[col] = y[col] + h;
-      attached_surface_forces(s, n, yp, fp);
+      forces(yp, refit, fp);
       yp[col] = y[col] - h;
-      attached_surface_forces(s, n, yp, fm);
+      forces(yp, refit, fm);
       yp[col] = y[col];
       for (int t : masses) diff[t].setZero();
       for (const auto& [t, f] : fp) diff[t] += f;
@@ -423,10 +453,7 @@ void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval e = eval_surface(s, n, y);
       if (!e.active) continue;
-      if (s.body >= 0) {
-        attached_surface_jacobian(s, n, y);
-        continue;
-      }
+      if (s.body >= 0) continue;  // below, per body
       Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
       if (e.normal > 0.0) {
         // F_t = -mu N g(v), g = v_t / w, w = sqrt(|v_t|^2 + v_s^2), v_t = P v with
@@ -445,6 +472,7 @@ void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
       jac_force(n, n, kx, kv);
     }
   }
+  for (int b = 0; b < static_cast<int>(m_.bodies.size()); ++b) attached_surfaces_jacobian(b, y);
   for (const WorldForce& f : m_.world_forces) jac_transfer(f.node, f.force);
   auto body_force_jac = [&](const NodeRef& node, int body, const Vector3d& fb) {
     const Matrix3d& r = frames_[body].rotation;

@@ -107,8 +107,9 @@ class MechanismSystem final : public ode::OdeSystem {
   void attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
                                std::vector<std::pair<int, Eigen::Vector3d>>& out,
                                const BodyFrame* known_frame = nullptr) const;
-  /// Jacobian blocks of attached_surface_forces by central differences.
-  void attached_surface_jacobian(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  /// Jacobian blocks of the attached_surface_forces of every active node on
+  /// surfaces attached to body b, by central differences.
+  void attached_surfaces_jacobian(int b, const ode::Vec& y) const;
 
   const Mechanism& m_;
   double segment_time_ = 0.0;
