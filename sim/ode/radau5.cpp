@@ -78,7 +78,7 @@ constexpr double kFacL = 5.0;                 ///< largest decrease: h / 5
 constexpr double kFacR = 1.0 / 8.0;           ///< largest increase: 8 h
 constexpr double kThet = 1e-3;                ///< Newton rate below which the Jacobian is reused
 constexpr double kQuot1 = 1.0, kQuot2 = 1.2;  ///< keep h (and the LU) if hnew/h is in here
-constexpr int kMaxFailures = 12;              ///< consecutive failed attempts before giving up
+constexpr int kMaxFailures = 40;              ///< consecutive failed attempts before giving up
 
 class Radau5Stepper final : public Stepper {
  public:
