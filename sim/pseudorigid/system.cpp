@@ -187,7 +187,8 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
 
 void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
                                               std::vector<std::pair<int, Vector3d>>& out,
-                                              const BodyFrame* known_frame) const {
+                                              const BodyFrame* known_frame,
+                                              const std::array<Matrix3d, 4>* known_omega) const {
   const Body& body = m_.bodies[s.body];
   const GhostPoint& gp = m_.ghost_points[s.ghost];
   BodyFrame frame;
@@ -227,9 +228,10 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
     const int fn = m_.bodies[gn.body].first_mass;
     for (int i = 0; i < 4; ++i) out.emplace_back(fn + i, gn.weights[i] * force);
   }
-  const std::array<Matrix3d, 4> omega = s.type == SurfaceType::kPoint
-                                            ? std::array<Matrix3d, 4>{}
-                                            : attitude_derivative(frame, body.local);
+  std::array<Matrix3d, 4> omega{};
+  if (s.type != SurfaceType::kPoint) {
+    omega = known_omega != nullptr ? *known_omega : attitude_derivative(frame, body.local);
+  }
   const Vector3d tau_body = rot.transpose() * tau;
   for (int i = 0; i < 4; ++i) {
     Vector3d f = -gp.weights[i] * force;
@@ -274,15 +276,30 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
   std::vector<std::pair<int, Vector3d>> fp, fm;
   std::vector<Vector3d> diff(m_.masses.size());
   const BodyFrame& frame0 = frames_[b];
-  auto forces = [&](const ode::Vec& yy, bool refit, std::vector<std::pair<int, Vector3d>>& out) {
+  const std::array<Matrix3d, 4> omega0 = attitude_derivative(frame0, body.local);
+  auto moves_with = [&](const NodeRef& n, int mass) {
+    if (n.kind == NodeRef::Kind::kMass) return n.index == mass;
+    if (n.kind != NodeRef::Kind::kGhost) return false;
+    const int fn = m_.bodies[m_.ghost_points[n.index].body].first_mass;
+    return mass >= fn && mass < fn + 4;
+  };
+  // Forces of the pairs that depend on mass `mass` (all of them when it is one of
+  // the body's own; the others' forces do not change and difference to zero).
+  auto forces = [&](const ode::Vec& yy, int mass, bool own, bool refit,
+                    std::vector<std::pair<int, Vector3d>>& out) {
     out.clear();
     BodyFrame frame = frame0;
+    std::array<Matrix3d, 4> omega = omega0;
     if (refit) {
       std::array<Vector3d, 4> x;
       for (int i = 0; i < 4; ++i) x[i] = seg(yy, 6 * (fb + i));
       frame = fit_attitude(x, body.local, &frame0.rotation);
+      omega = attitude_derivative(frame, body.local);
     }
-    for (const auto& [s, n] : pairs) attached_surface_forces(*s, n, yy, out, &frame);
+    for (const auto& [s, n] : pairs) {
+      if (!own && !moves_with(n, mass)) continue;
+      attached_surface_forces(*s, n, yy, out, &frame, &omega);
+    }
   };
   // Momenta enter only through the dampers: without one, position columns suffice.
   const int columns = damped ? 6 : 3;
@@ -293,9 +310,9 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
       const double h = 1e-6 * (1.0 + std::abs(y[col]));
       const bool refit = own && c < 3;
       yp[col] = y[col] + h;
-      forces(yp, refit, fp);
+      forces(yp, mass, own, refit, fp);
       yp[col] = y[col] - h;
-      forces(yp, refit, fm);
+      forces(yp, mass, own, refit, fm);
       yp[col] = y[col];
       for (int t : masses) diff[t].setZero();
       for (const auto& [t, f] : fp) diff[t] += f;

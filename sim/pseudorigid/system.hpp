@@ -104,9 +104,11 @@ class MechanismSystem final : public ode::OdeSystem {
   /// damping -b P (v_n - v_p) goes the same way (its power is exactly the
   /// dissipated power). Computed from y alone. Adds (mass, force [N]) pairs to out.
   /// `known_frame`: the body's frame at y when the caller has it (else fitted here).
+  /// `known_omega`: attitude_derivative(*known_frame) when the caller has it.
   void attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
                                std::vector<std::pair<int, Eigen::Vector3d>>& out,
-                               const BodyFrame* known_frame = nullptr) const;
+                               const BodyFrame* known_frame = nullptr,
+                               const std::array<Eigen::Matrix3d, 4>* known_omega = nullptr) const;
   /// Jacobian blocks of the attached_surface_forces of every active node on
   /// surfaces attached to body b, by central differences.
   void attached_surfaces_jacobian(int b, const ode::Vec& y) const;
