@@ -141,10 +141,9 @@ Result run_once(double k, double t_end, double tol, Variant v) {
   const double c0 = thread_cpu();
   SUNContext ctx = nullptr;
   SUNContext_Create(nullptr, &ctx);
-  N_Vector y = N_VNew_Serial(n + 1, ctx);
+  N_Vector y = N_VNew_Serial(n, ctx);
   const Eigen::VectorXd y0 = m.initial_state();
   std::memcpy(N_VGetArrayPointer(y), y0.data(), sizeof(double) * n);
-  N_VGetArrayPointer(y)[n] = 0.0;
   void* mem = CVodeCreate(CV_BDF, ctx);
   CVodeInit(mem, rhs, 0.0, y);
   CVodeSStolerances(mem, tol, tol);

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_support.hpp"
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using nlohmann::json;
@@ -25,73 +27,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using cli_support::pronk;
+using cli_support::quote;
+using cli_support::Run;
+using cli_support::slurp;
+using cli_support::TempDir;
+using cli_support::write_file;
+
 const std::string kSceneDir = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/";
 
 /// A fresh directory under /tmp, removed with everything in it at scope exit.
-struct TempDir {
-  std::string path;
-  TempDir() {
-    char tmpl[] = "/tmp/pronk_cli_test_XXXXXX";
-    const char* p = ::mkdtemp(tmpl);
-    REQUIRE(p != nullptr);
-    path = p;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
-}
-
-void write_file(const std::string& path, const std::string& content) {
-  std::ofstream(path, std::ios::binary) << content;
-}
-
-struct Run {
-  int code = -1;  ///< exit code; -1 when killed by a signal
-  std::string out, err;
-};
-
-/// Runs pronk with `args` (each one shell-quoted) in `dir`, capturing stdout and stderr.
-Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
-  // Built by appending only (GCC 12 warns falsely, -Wrestrict, on "literal" + std::string&&).
-  std::string cmd = "cd ";
-  for (const std::string& part : {quote(dir.path), std::string(" && exec "), quote(PRONK_EXE)}) {
-    cmd += part;
-  }
-  for (const auto& a : args) {
-    cmd += ' ';
-    cmd += quote(a);
-  }
-  cmd += " >";
-  cmd += quote(dir / ".stdout");
-  cmd += " 2>";
-  cmd += quote(dir / ".stderr");
-  cmd += " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.out = read_file(dir / ".stdout");
-  r.err = read_file(dir / ".stderr");
-  return r;
-}
-
-json shipped(const std::string& name) { return json::parse(read_file(kSceneDir + name)); }
+json shipped(const std::string& name) { return json::parse(slurp(kSceneDir + name)); }
 
 long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
 
@@ -217,7 +164,7 @@ void check_bad_input(const Run& r, const std::string& file, const std::string& p
 }  // namespace
 
 TEST_CASE("pronk --help and simulate --help", "[cli]") {
-  TempDir dir;
+  TempDir dir("cli");
   const Run top = pronk(dir, {"--help"});
   CHECK(top.code == 0);
   CHECK_THAT(top.out, Contains("simulate"));
@@ -230,7 +177,7 @@ TEST_CASE("pronk --help and simulate --help", "[cli]") {
 }
 
 TEST_CASE("usage errors exit 2", "[cli]") {
-  TempDir dir;
+  TempDir dir("cli");
   const Run none = pronk(dir, {});
   CHECK(none.code == 2);
   CHECK_THAT(none.err, Contains("subcommand"));
@@ -244,7 +191,7 @@ TEST_CASE("usage errors exit 2", "[cli]") {
 }
 
 TEST_CASE("every class of bad scene exits 2 with one error line", "[cli][errors]") {
-  TempDir dir;
+  TempDir dir("cli");
   for (const BadCase& c : bad_cases()) {
     INFO(c.label);
     json doc = shipped(c.base);
@@ -258,7 +205,7 @@ TEST_CASE("every class of bad scene exits 2 with one error line", "[cli][errors]
 }
 
 TEST_CASE("missing files, invalid JSON and overflowing numbers exit 2", "[cli][errors]") {
-  TempDir dir;
+  TempDir dir("cli");
   SECTION("missing file") {
     const Run r = pronk(dir, {"simulate", "no_such_scene.json"});
     CHECK(r.code == 2);
@@ -297,7 +244,7 @@ TEST_CASE("missing files, invalid JSON and overflowing numbers exit 2", "[cli][e
 }
 
 TEST_CASE("bad --set overrides exit 2 naming the pointer", "[cli][errors]") {
-  TempDir dir;
+  TempDir dir("cli");
   const std::string scene = kSceneDir + "case1_body_only.json";
   SECTION("a value out of range") {
     const Run r = pronk(dir, {"simulate", scene, "--set", "/body/mass=-1", "--out", dir / "o"});
@@ -325,7 +272,7 @@ TEST_CASE("bad --set overrides exit 2 naming the pointer", "[cli][errors]") {
 
 TEST_CASE("a good run writes every output, its resolved scene reruns identically",
           "[cli][outputs]") {
-  TempDir dir;
+  TempDir dir("cli");
   const std::string scene = kSceneDir + "case1_body_only.json";
   const Run r = pronk(dir, {"simulate", scene, "--set", "/simulation/duration=1", "--out", "run1"});
   INFO("stderr: " << r.err);
@@ -342,7 +289,7 @@ TEST_CASE("a good run writes every output, its resolved scene reruns identically
     CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
   }
 
-  const json summary = json::parse(read_file(dir / "run1/summary.json"));
+  const json summary = json::parse(slurp(dir / "run1/summary.json"));
   CHECK(summary["status"] == "completed");
   CHECK(summary["model"] == "impulse");
   CHECK(summary["scene"] == "case1_body_only");
@@ -355,17 +302,17 @@ TEST_CASE("a good run writes every output, its resolved scene reruns identically
   CHECK(summary["metrics"]["max_apex_error_m"].get<double>() < 1e-6);
   check_no_null(summary);
 
-  const json resolved = json::parse(read_file(dir / "run1/scene.resolved.json"));
+  const json resolved = json::parse(slurp(dir / "run1/scene.resolved.json"));
   CHECK(resolved["simulation"]["duration"] == 1.0);
   CHECK(resolved["body"]["inertia_tensor"][2][2] == 0.0164);
   check_no_null(resolved);
 
   // 1 s sampled every 5 ms: 201 rows.
-  const std::string traj = read_file(dir / "run1/trajectory.csv");
+  const std::string traj = slurp(dir / "run1/trajectory.csv");
   check_csv(traj, 201);
   CHECK(count_lines(traj) == 202);
   CHECK_THAT(traj, StartsWith("t,x,y,z,"));
-  check_csv(read_file(dir / "run1/strides.csv"), 2);
+  check_csv(slurp(dir / "run1/strides.csv"), 2);
 
   // The resolved scene fed back reproduces the run byte for byte.
   const Run again = pronk(dir, {"simulate", "run1/scene.resolved.json", "--out", "run2", "-q"});
@@ -373,37 +320,36 @@ TEST_CASE("a good run writes every output, its resolved scene reruns identically
   CHECK(again.out.empty());  // -q
   for (const char* f : {"trajectory.csv", "strides.csv", "scene.resolved.json"}) {
     INFO(f);
-    CHECK(read_file(dir / ("run2/" + std::string(f))) ==
-          read_file(dir / ("run1/" + std::string(f))));
+    CHECK(slurp(dir / ("run2/" + std::string(f))) == slurp(dir / ("run1/" + std::string(f))));
   }
   // The same command again (over the existing outputs) is also identical.
   const Run same =
       pronk(dir, {"simulate", scene, "--set", "/simulation/duration=1", "--out", "run1", "-q"});
   REQUIRE(same.code == 0);
-  CHECK(read_file(dir / "run1/trajectory.csv") == read_file(dir / "run2/trajectory.csv"));
-  CHECK(read_file(dir / "run1/strides.csv") == read_file(dir / "run2/strides.csv"));
+  CHECK(slurp(dir / "run1/trajectory.csv") == slurp(dir / "run2/trajectory.csv"));
+  CHECK(slurp(dir / "run1/strides.csv") == slurp(dir / "run2/strides.csv"));
 }
 
 TEST_CASE("simulate --model pulse overrides the scene's model", "[cli][outputs]") {
-  TempDir dir;
+  TempDir dir("cli");
   const Run r = pronk(dir, {"simulate", kSceneDir + "case2_legged_impulse.json", "--model", "pulse",
                             "--set", "/simulation/duration=1", "--out", "p", "-q"});
   INFO("stderr: " << r.err);
   REQUIRE(r.code == 0);
-  const json summary = json::parse(read_file(dir / "p/summary.json"));
+  const json summary = json::parse(slurp(dir / "p/summary.json"));
   CHECK(summary["model"] == "pulse");
   CHECK(summary["status"] == "completed");
   CHECK(summary["metrics"]["peak_leg_force_N"].get<double>() > 0.0);
   CHECK(summary["metrics"]["mean_duty_cycle"].get<double>() > 0.0);
   check_no_null(summary);
-  CHECK(json::parse(read_file(dir / "p/scene.resolved.json"))["model"] == "pulse");
+  CHECK(json::parse(slurp(dir / "p/scene.resolved.json"))["model"] == "pulse");
   CHECK(fs::is_regular_file(dir / "p/leg_force.gp"));
-  check_csv(read_file(dir / "p/trajectory.csv"), 201);
-  check_csv(read_file(dir / "p/strides.csv"), 2);
+  check_csv(slurp(dir / "p/trajectory.csv"), 201);
+  check_csv(slurp(dir / "p/strides.csv"), 2);
 }
 
 TEST_CASE("a run that falls exits 1 with status fell and finite outputs", "[cli][outputs]") {
-  TempDir dir;
+  TempDir dir("cli");
   const std::string scene = kSceneDir + "case1_body_only.json";
   // case1 has no angular_velocity key: an element override has no parent.
   CHECK(pronk(dir, {"simulate", scene, "--set", "/initial/angular_velocity/0=40"}).code == 2);
@@ -412,7 +358,7 @@ TEST_CASE("a run that falls exits 1 with status fell and finite outputs", "[cli]
                             "/initial/angular_velocity=[40,0,0]", "--out", "fell", "-q"});
   REQUIRE(r.code == 1);
   CHECK_THAT(r.err, !Contains("pronk: error"));
-  const json summary = json::parse(read_file(dir / "fell/summary.json"));
+  const json summary = json::parse(slurp(dir / "fell/summary.json"));
   CHECK(summary["status"] == "fell");
   CHECK_THAT(summary["reason"].get<std::string>(), Contains("tilted past 60 deg"));
   CHECK(summary["t_end"].get<double>() < 0.1);
@@ -420,8 +366,8 @@ TEST_CASE("a run that falls exits 1 with status fell and finite outputs", "[cli]
   CHECK(summary["metrics"]["strides"] == 0);
   CHECK(summary["metrics"]["final_roll_deg"].get<double>() == Approx(60.0).margin(1e-6));
   check_no_null(summary);
-  const std::string traj = read_file(dir / "fell/trajectory.csv");
-  const std::string strides = read_file(dir / "fell/strides.csv");
+  const std::string traj = slurp(dir / "fell/trajectory.csv");
+  const std::string strides = slurp(dir / "fell/strides.csv");
   for (const std::string* text : {&traj, &strides}) {
     std::string lower(*text);
     std::transform(lower.begin(), lower.end(), lower.begin(),

@@ -15,70 +15,22 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_support.hpp"
+
 using Catch::Matchers::Contains;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
 
+using cli_support::pronk;
+using cli_support::quote;
+using cli_support::Run;
+using cli_support::slurp;
+using cli_support::TempDir;
+using cli_support::write_file;
+
 const std::string kMechDir = std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/";
-
-struct TempDir {
-  std::string path;
-  TempDir() {
-    char tmpl[] = "/tmp/pronk_mech_test_XXXXXX";
-    const char* p = ::mkdtemp(tmpl);
-    REQUIRE(p != nullptr);
-    path = p;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
-}
-
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd ";
-  cmd += quote(dir.path);
-  cmd += " && exec ";
-  cmd += quote(PRONK_EXE);
-  for (const auto& a : args) {
-    cmd += ' ';
-    cmd += quote(a);
-  }
-  cmd += " >";
-  cmd += quote(dir / ".stdout");
-  cmd += " 2>";
-  cmd += quote(dir / ".stderr");
-  cmd += " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.out = slurp(dir / ".stdout");
-  r.err = slurp(dir / ".stderr");
-  return r;
-}
 
 void check_finite_json(const json& j, const std::string& where = "") {
   INFO("at " << (where.empty() ? "/" : where));
@@ -132,7 +84,7 @@ json check_outputs(const TempDir& dir, const std::string& out) {
 }  // namespace
 
 TEST_CASE("pronk simulate runs every shipped mechanism scene", "[cli][mechanism]") {
-  TempDir dir;
+  TempDir dir("mech");
   for (const char* name : {"satellite", "pendulum", "spring_leg_drop", "four_leg_drop"}) {
     INFO(name);
     const Run r = pronk(dir, {"simulate", kMechDir + name + ".json", "--set",
@@ -156,7 +108,7 @@ TEST_CASE("pronk simulate runs every shipped mechanism scene", "[cli][mechanism]
 
 TEST_CASE("case 8 scene: RK4 with a big step exits 1 as diverged; a small step completes",
           "[cli][mechanism]") {
-  TempDir dir;
+  TempDir dir("mech");
   const std::string scene = kMechDir + "explicit_instability.json";
   Run r = pronk(dir, {"simulate", scene, "--set", "/simulation/method=\"rk4\"", "--set",
                       "/simulation/h_fixed=5e-3", "--out", "big"});
@@ -176,7 +128,7 @@ TEST_CASE("case 8 scene: RK4 with a big step exits 1 as diverged; a small step c
 
 TEST_CASE("mechanism options: check_jacobian and auto stiffness reach the summary",
           "[cli][mechanism]") {
-  TempDir dir;
+  TempDir dir("mech");
   const Run r = pronk(dir, {"simulate", kMechDir + "spring_leg_drop.json", "--set",
                             "/simulation/t_end=0.2", "--set", "/simulation/check_jacobian=true",
                             "--set", "/simulation/contact_stiffness=\"auto\"", "--set",
@@ -198,7 +150,7 @@ TEST_CASE("mechanism options: check_jacobian and auto stiffness reach the summar
 }
 
 TEST_CASE("bad mechanism input exits 2 naming file and pointer", "[cli][mechanism]") {
-  TempDir dir;
+  TempDir dir("mech");
   const std::string scene = kMechDir + "pendulum.json";
   Run r = pronk(dir, {"simulate", scene, "--set", "/simulation/method=\"rk9\""});
   CHECK(r.code == 2);

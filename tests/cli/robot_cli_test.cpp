@@ -14,69 +14,20 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_support.hpp"
+
 using Catch::Matchers::Contains;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  std::string path;
-  TempDir() {
-    char tmpl[] = "/tmp/pronk_robot_test_XXXXXX";
-    const char* p = ::mkdtemp(tmpl);
-    REQUIRE(p != nullptr);
-    path = p;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
-}
-
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
-  // Appends only (operator+ on strings trips GCC 12's -Wrestrict false positive).
-  std::string cmd = "cd ";
-  cmd += quote(dir.path);
-  cmd += " && exec ";
-  cmd += quote(PRONK_EXE);
-  for (const auto& a : args) {
-    cmd += ' ';
-    cmd += quote(a);
-  }
-  cmd += " >";
-  cmd += quote(dir / ".stdout");
-  cmd += " 2>";
-  cmd += quote(dir / ".stderr");
-  cmd += " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.out = slurp(dir / ".stdout");
-  r.err = slurp(dir / ".stderr");
-  return r;
-}
+using cli_support::pronk;
+using cli_support::quote;
+using cli_support::Run;
+using cli_support::slurp;
+using cli_support::TempDir;
+using cli_support::write_file;
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
@@ -87,7 +38,7 @@ const std::string kCase5 =
 
 TEST_CASE("pronk simulate robot: one scene at three fidelities, same stride columns",
           "[robot][cli]") {
-  TempDir dir;
+  TempDir dir("robot");
   std::vector<std::string> headers;
   for (const char* model : {"impulse", "pulse", "pseudo_rigid"}) {
     const Run r = pronk(dir, {"simulate", kCase5, "--model", model, "--set",
@@ -123,7 +74,7 @@ TEST_CASE("pronk simulate robot: one scene at three fidelities, same stride colu
 
 TEST_CASE("pronk simulate robot: bad pseudo_rigid input exits 2 naming the pointer",
           "[robot][cli]") {
-  TempDir dir;
+  TempDir dir("robot");
   const Run r = pronk(
       dir, {"simulate", kCase5, "--set", "/pseudo_rigid/legs=\"wheels\"", "--out", dir / "x"});
   CHECK(r.code == 2);

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_support.hpp"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -18,52 +20,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  std::string path;
-  TempDir() {
-    char tmpl[] = "/tmp/pronk_extremes_test_XXXXXX";
-    const char* p = ::mkdtemp(tmpl);
-    REQUIRE(p != nullptr);
-    path = p;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
-}
-
-struct Run {
-  int code = -1;
-  std::string out;
-};
-
-/// Runs pronk with args in dir; stdout captured.
-Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd " + quote(dir.path) + " && exec " + quote(PRONK_EXE);
-  for (const auto& a : args) cmd += ' ' + quote(a);
-  cmd += " >" + quote(dir / ".stdout") + " 2>" + quote(dir / ".stderr") + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.out = slurp(dir / ".stdout");
-  return r;
-}
+using cli_support::pronk;
+using cli_support::quote;
+using cli_support::Run;
+using cli_support::slurp;
+using cli_support::TempDir;
+using cli_support::write_file;
 
 /// No "nan" or "inf" token in any output file of the run directory.
 void check_no_nan(const std::string& dir) {
@@ -82,7 +44,7 @@ void check_no_nan(const std::string& dir) {
 
 TEST_CASE("extreme CLI: a flexing, penetrating mechanism warns in summary.json and on stdout",
           "[extremes][cli]") {
-  TempDir dir;
+  TempDir dir("extremes");
   const Run r = pronk(
       dir, {"simulate", std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/four_leg_drop.json",
             "--set", "/simulation/t_end=0.3", "--out", dir / "out"});
@@ -99,7 +61,7 @@ TEST_CASE("extreme CLI: a flexing, penetrating mechanism warns in summary.json a
 
 TEST_CASE("extreme CLI: an explicit solver past its limit exits 1 as diverged, files finite",
           "[extremes][cli]") {
-  TempDir dir;
+  TempDir dir("extremes");
   const Run r =
       pronk(dir, {"simulate",
                   std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/explicit_instability.json",
@@ -112,7 +74,7 @@ TEST_CASE("extreme CLI: an explicit solver past its limit exits 1 as diverged, f
 }
 
 TEST_CASE("extreme CLI: the small-angle formulation past 15 deg warns once", "[extremes][cli]") {
-  TempDir dir;
+  TempDir dir("extremes");
   const Run r = pronk(
       dir, {"simulate", std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case1_body_only.json",
             "--set", "/attitude=small_angle_euler123", "--set", "/initial/attitude_deg/0=20",
