@@ -2,7 +2,8 @@
 // document on stdout:
 //  - drop: the quad spring hopper drop test (1.5 kg body, four 100 N/m prismatic
 //    legs, 10 g feet, studies/scenes/case6_pr_drop.json with 10 g feet and a
-//    critically damped foot contact), 10 s simulated: wall time, steps, RHS and
+//    critically damped foot contact with friction mu = 1, as MuJoCo's default
+//    contact), 10 s simulated: wall time, steps, RHS and
 //    Jacobian counts and the energy-balance error relative to the drop energy,
 //    for a few solver tolerances and both error norms. Anchor (measured by the
 //    issue's author): MuJoCo 2.2.2, Euler 1 ms, 0.041 s (RK4 0.27 s), losing
@@ -29,6 +30,7 @@ void drop(double tol, bool body_norm, bool* first) {
   scene::Scene s = io::load_scene(scene_path("case6_pr_drop.json"));
   s.pseudo_rigid.foot_mass = 0.01;
   s.pseudo_rigid.contact_damping = 63.0;  // 2 sqrt(k m): plastic foot impact
+  s.pseudo_rigid.friction = 1.0;          // MuJoCo's default: without it the body tips over
   s.pseudo_rigid.solver.rtol = tol;
   s.pseudo_rigid.solver.atol = tol;
   s.pseudo_rigid.body_error_norm = body_norm;
