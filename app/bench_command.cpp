@@ -18,6 +18,7 @@
 
 #include "app/bench_suite.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/plot.hpp"
 
@@ -543,8 +544,8 @@ int run_bench(const BenchArgs& args) {
   all.insert(all.end(), hop.begin(), hop.end());
   json doc;
   doc["benchmark"] = "pronk bench";
-  doc["version"] = PRONK_VERSION;
-  doc["commit"] = PRONK_GIT_COMMIT;
+  doc["version"] = pronk::version();
+  doc["commit"] = pronk::git_commit();
   doc["date_utc"] = now_utc();
   doc["machine"] = machine();
   doc["quick"] = c.quick;

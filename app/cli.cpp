@@ -9,6 +9,7 @@
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace pronk::app {
@@ -17,7 +18,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App app{
       "pronk: design and simulate robots that run by ballistic hops.\n"
       "Exit codes: 0 success, 1 a run or check failed, 2 bad input."};
-  app.set_version_flag("--version", std::string(PRONK_VERSION) + " (" + PRONK_GIT_COMMIT + ")");
+  app.set_version_flag("--version",
+                       std::string(pronk::version()) + " (" + pronk::git_commit() + ")");
   app.require_subcommand(1);
   SimulateArgs simulate_args;
   CLI::App* simulate = add_simulate_command(app, simulate_args);

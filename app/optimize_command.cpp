@@ -11,6 +11,7 @@
 
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/json_reader.hpp"
 #include "sim/io/scene_loader.hpp"
@@ -124,7 +125,7 @@ int run_reproduce(const ReproduceArgs& args) {
                          std::to_string(unit.size()));
   }
   const optimize::Evaluation e = ev.evaluate_full(unit);
-  const bool same_build = design.value("commit", "") == std::string(PRONK_GIT_COMMIT) &&
+  const bool same_build = design.value("commit", "") == std::string(pronk::git_commit()) &&
                           design.value("compiler", "") == optimize::compiler_id();
   std::printf(
       "reproducing %s (%s build: %s)\n", args.design_path.c_str(),

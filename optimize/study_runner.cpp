@@ -12,6 +12,7 @@
 
 #include "optimize/journal.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/plot.hpp"
 #include "sim/io/run_output.hpp"
@@ -321,8 +322,8 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
   return {{"type", "pronk_design"},
           {"study", st.name},
           {"study_hash", st.hash},
-          {"version", PRONK_VERSION},
-          {"commit", PRONK_GIT_COMMIT},
+          {"version", pronk::version()},
+          {"commit", pronk::git_commit()},
           {"compiler", compiler_id()},
           {"seed", st.optimizer.seed},
           {"threads", threads},

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/io/build_info.hpp"
+
 namespace pronk::optimize::map {
 
 using nlohmann::json;
@@ -147,8 +149,8 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
   j["type"] = "pronk_map";
   j["name"] = st.name;
   j["study_hash"] = st.hash;
-  j["version"] = PRONK_VERSION;
-  j["commit"] = PRONK_GIT_COMMIT;
+  j["version"] = pronk::version();
+  j["commit"] = pronk::git_commit();
   json models = json::array();
   for (auto m : st.models) models.push_back(model_name(m));
   j["models"] = models;

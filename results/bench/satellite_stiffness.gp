@@ -9,45 +9,45 @@ set format y '10^{%L}'
 set grid
 set key outside right
 $d0 << EOD
-10000 0.0324129
-100000 0.133469
-1e+06 0.462943
-1e+07 1.52669
-1e+08 4.80648
+10000 0.0403175
+100000 0.168786
+1e+06 0.583879
+1e+07 2.20099
+1e+08 6.13823
 EOD
 $d1 << EOD
-10000 0.00670451
-100000 0.0224109
-1e+06 0.0774129
-1e+07 0.249593
-1e+08 0.803626
+10000 0.00588164
+100000 0.0199097
+1e+06 0.0691654
+1e+07 0.252348
+1e+08 0.713467
 EOD
 $d2 << EOD
-10000 0.111488
-100000 0.258459
-1e+06 0.370095
-1e+07 0.261775
-1e+08 0.422584
+10000 0.124454
+100000 0.292607
+1e+06 0.552036
+1e+07 0.295549
+1e+08 0.474536
 EOD
 $d3 << EOD
-10000 0.0288964
-100000 0.045356
-1e+06 0.0729082
-1e+07 0.116479
-1e+08 0.222557
+10000 0.0337471
+100000 0.0529023
+1e+06 0.086256
+1e+07 0.142417
+1e+08 0.253973
 EOD
 $d4 << EOD
-10000 0.0577119
-100000 0.129309
-1e+06 0.256864
-1e+07 0.545591
-1e+08 0.996603
+10000 0.0650839
+100000 0.150465
+1e+06 0.301501
+1e+07 0.8382
+1e+08 1.14263
 EOD
 $d5 << EOD
-10000 0.00183894
-100000 0.005723
-1e+06 0.0179873
-1e+07 0.0568807
-1e+08 0.183234
+10000 0.00147318
+100000 0.00485987
+1e+06 0.0224438
+1e+07 0.0458561
+1e+08 0.150772
 EOD
 plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d1 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'radau5 (state norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d4 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced, $d5 using 1:2 with linespoints title 'verlet (state norm)' noenhanced

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/plot.hpp"
 #include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
@@ -90,8 +91,8 @@ json run_summary_json(const scene::Scene& scene, const reduced::RunResult& run,
            {{"method", std::string(ode::to_string(scene.simulation.solver.method))},
             {"rtol", scene.simulation.solver.rtol},
             {"atol", scene.simulation.solver.atol}}},
-          {"version", PRONK_VERSION},
-          {"commit", PRONK_GIT_COMMIT}};
+          {"version", pronk::version()},
+          {"commit", pronk::git_commit()}};
 }
 
 std::string trajectory_csv(const reduced::RunResult& run) {
