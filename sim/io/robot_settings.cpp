@@ -58,6 +58,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     const Eigen::VectorXd kd = a.has("kd") ? a.vector("kd", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
     if (!a.has("kp")) a.optional("kp");
     if (!a.has("kd")) a.optional("kd");
+    p.stance_max_moment = a.number_or("max_moment", p.stance_max_moment, 0.0, 1e6);
     for (int k = 0; k < 2; ++k) {
       p.stance_kp[k] = kp[k];
       p.stance_kd[k] = kd[k];
@@ -114,7 +115,9 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"hip_rotation", p.hip_rotation},
             {"max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI},
             {"stance_attitude",
-             {{"kp", {p.stance_kp[0], p.stance_kp[1]}}, {"kd", {p.stance_kd[0], p.stance_kd[1]}}}},
+             {{"kp", {p.stance_kp[0], p.stance_kp[1]}},
+              {"kd", {p.stance_kd[0], p.stance_kd[1]}},
+              {"max_moment", p.stance_max_moment}}},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},

@@ -45,7 +45,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   for (size_t i = 0; i < free_.size(); ++i) {
     if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
   }
-  if (g.empty()) return false;
+  if (g.size() < 3) return false;  // partial landings: no differential push
   const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
   const Eigen::Matrix3d R = fr.rotation;
   const Vector3d com = fr.com;
@@ -60,6 +60,9 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   Eigen::Vector3d b(0.0, 0.0, 0.0);  // moment about body x, y [N m]; net push 0
   for (int k = 0; k < 2; ++k) {
     b[k] = settings_.stance_kp[k] * tilt[k] - settings_.stance_kd[k] * w[k];
+    // Smooth saturation at the moment limit.
+    const double m = settings_.stance_max_moment;
+    if (m > 0.0) b[k] = m * std::tanh(b[k] / m);
   }
   // Minimum-norm leg forces giving that moment with no net force along the legs'
   // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).

@@ -134,6 +134,7 @@ struct PseudoRigid {
   /// w: body angular velocity [rad/s]). Gains [N m/rad], [N m s/rad]; 0 = off.
   double stance_kp[2] = {0.0, 0.0};
   double stance_kd[2] = {0.0, 0.0};
+  double stance_max_moment = 0.0;  ///< smooth limit of each moment [N m]; 0 = none
   bool stance_feedback() const {
     return stance_kp[0] != 0.0 || stance_kp[1] != 0.0 || stance_kd[0] != 0.0 || stance_kd[1] != 0.0;
   }
