@@ -52,6 +52,21 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.hip_rotation = r.boolean_or("hip_rotation", p.hip_rotation);
   p.max_leg_angle =
       r.number_or("max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI, 0.0, 80.0) * M_PI / 180.0;
+  if (r.has("stance_attitude")) {
+    JsonReader a = r.object("stance_attitude");
+    const Eigen::VectorXd kp = a.has("kp") ? a.vector("kp", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
+    const Eigen::VectorXd kd = a.has("kd") ? a.vector("kd", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
+    if (!a.has("kp")) a.optional("kp");
+    if (!a.has("kd")) a.optional("kd");
+    p.stance_max_moment = a.number_or("max_moment", p.stance_max_moment, 0.0, 1e6);
+    for (int k = 0; k < 2; ++k) {
+      p.stance_kp[k] = kp[k];
+      p.stance_kd[k] = kd[k];
+    }
+    a.finish();
+  } else {
+    r.optional("stance_attitude");
+  }
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -99,6 +114,10 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"slip_velocity", p.slip_velocity},
             {"hip_rotation", p.hip_rotation},
             {"max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI},
+            {"stance_attitude",
+             {{"kp", {p.stance_kp[0], p.stance_kp[1]}},
+              {"kd", {p.stance_kd[0], p.stance_kd[1]}},
+              {"max_moment", p.stance_max_moment}}},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},
@@ -139,8 +158,9 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
         out.push_back("/pseudo_rigid/dummy_ratio");
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
-        for (const char* k : {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness",
-                              "contact_damping", "friction", "slip_velocity", "hip_rotation"}) {
+        for (const char* k :
+             {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
+              "friction", "slip_velocity", "hip_rotation", "stance_attitude"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       }

@@ -187,7 +187,7 @@ struct Run {
     rs.energies = msys.energies(y);
     rs.dissipated = dissipated;
     rs.actuator_work = work + out.monitors.hip_work;
-    rs.actuator_force = sys.actuator_forces();
+    rs.actuator_force = sys.actuator_forces(y);
     for (size_t i = 0; i < model.hip.size(); ++i) {
       // Σ actuator forces on the body (world), as the reduced models' leg force.
       smp.leg_force_world += rs.actuator_force[i] * sys.push_world(i, y);
@@ -288,10 +288,18 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
 /// neutral point, corrected by the impulse's tilt). v: horizontal CoM velocity
 /// at touchdown [m/s]; stance: expected stance duration T_s [s]; leg: leg length
 /// [m]; max_angle: limit from the vertical [rad].
+/// held_roll: with the stance roll held (stance attitude feedback) the body moves
+/// over its gripped feet only along the legs in the lateral plane (ab/adduction is
+/// held too), so the lateral velocity across the legs is lost at touchdown and the
+/// takeoff velocity follows the legs: the leg is put along the desired takeoff
+/// velocity v_takeoff in y instead (no neutral point).
 Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
-                            double max_angle) {
+                            double max_angle, bool held_roll, const Vector3d& v_takeoff) {
   Eigen::Vector2d r = 0.5 * stance * v.head<2>();
   if (P.z() > 1e-12) r -= leg * P.head<2>() / P.norm();
+  if (held_roll && v_takeoff.z() > 1e-12) {
+    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
+  }
   const double r_max = leg * std::sin(max_angle);
   if (r.norm() > r_max) r *= r_max / r.norm();
   return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
@@ -479,8 +487,13 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         P.z() += total_mass * g * spring_stance;
         // The hips' mean speed over the stance: the CoM's plus half the change asked.
         const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass;
-        const Vector3d d =
-            free_leg_direction(P, v_mean, spring_stance, model.rest_length[0], prs.max_leg_angle);
+        const bool held_roll = prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0;
+        // Desired takeoff velocity: lateral as the controller asks, vertical as the
+        // springs return it (the touchdown speed).
+        Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass;
+        v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
+        const Vector3d d = free_leg_direction(P, v_mean, spring_stance, model.rest_length[0],
+                                              prs.max_leg_angle, held_roll, v_takeoff);
         const Vector3d w_world = msys.body_omega(model.body, y);
         Matrix3d R_td = msys.frames(y)[model.body].rotation;
         if (w_world.norm() * tf > 1e-12) {

@@ -15,7 +15,8 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
       sys_(mechanism),
       force_(model.hip.size(), 0.0),
       push_(model.hip.size(), Vector3d::UnitZ()),
-      free_(model.hip.size(), false) {
+      free_(model.hip.size(), false),
+      fb_(model.hip.size(), 0.0) {
   for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   const int nm = static_cast<int>(mechanism.masses.size());
   extra_ = fp_ = fm_ = ode::Vec::Zero(3 * nm);
@@ -37,8 +38,76 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
 }
 
+bool RobotSystem::feedback(const ode::Vec& y) const {
+  std::fill(fb_.begin(), fb_.end(), 0.0);
+  if (!settings_.stance_feedback() || !settings_.actuators) return false;
+  std::vector<size_t> g;
+  for (size_t i = 0; i < free_.size(); ++i) {
+    if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
+  }
+  if (g.size() < 3) return false;  // partial landings: no differential push
+  const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
+  const Eigen::Matrix3d R = fr.rotation;
+  const Vector3d com = fr.com;
+  // Tilt of the body z axis from the vertical as a rotation vector (body frame) and
+  // the body angular velocity (body frame).
+  const Vector3d zb = R.col(2);
+  const Vector3d axis = zb.cross(Vector3d::UnitZ());
+  const double s = axis.norm();
+  const Vector3d tilt =
+      s > 1e-15 ? Vector3d(R.transpose() * axis * (std::atan2(s, zb.z()) / s)) : Vector3d::Zero();
+  const Vector3d w = R.transpose() * sys_.body_omega(model_.body, y);
+  Eigen::Vector3d b(0.0, 0.0, 0.0);  // moment about body x, y [N m]; net push 0
+  for (int k = 0; k < 2; ++k) {
+    b[k] = settings_.stance_kp[k] * tilt[k] - settings_.stance_kd[k] * w[k];
+    // Smooth saturation at the moment limit.
+    const double m = settings_.stance_max_moment;
+    if (m > 0.0) b[k] = m * std::tanh(b[k] / m);
+  }
+  // Minimum-norm leg forces giving that moment with no net force along the legs'
+  // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).
+  // With fewer than three legs down the moment may need a net push (or pull).
+  const int rows = g.size() >= 3 ? 3 : 2;
+  Eigen::MatrixXd A(rows, static_cast<int>(g.size()));
+  std::vector<Vector3d> u(g.size());
+  Vector3d n = Vector3d::Zero();
+  for (size_t k = 0; k < g.size(); ++k) {
+    u[k] = push_world(g[k], y);
+    n += u[k];
+  }
+  n.normalize();
+  for (size_t k = 0; k < g.size(); ++k) {
+    const Vector3d r = sys_.node_position(model_.hip_node[g[k]], y) - com;
+    const Vector3d m = R.transpose() * r.cross(u[k]);
+    A(0, static_cast<int>(k)) = m.x();
+    A(1, static_cast<int>(k)) = m.y();
+    if (rows == 3) A(2, static_cast<int>(k)) = u[k].dot(n);
+  }
+  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b.head(rows));
+  // A leg can only pull its foot as far as its spring pushes it: the total actuator
+  // force stays above minus the spring force (or the set force, if lower), so a foot
+  // just landed is not lifted off again.
+  for (size_t k = 0; k < g.size(); ++k) {
+    const size_t i = g[k];
+    const double length =
+        (sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i])).norm();
+    const double spring = settings_.leg_stiffness * std::max(0.0, model_.rest_length[i] - length);
+    fb_[i] = std::max(f[static_cast<int>(k)], std::min(0.0, -spring - force_[i]));
+  }
+  return true;
+}
+
+std::vector<double> RobotSystem::actuator_forces(const ode::Vec& y) const {
+  std::vector<double> out = force_;
+  if (feedback(y)) {
+    for (size_t i = 0; i < out.size(); ++i) out[i] += fb_[i];
+  }
+  return out;
+}
+
 bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
-  bool any = false;
+  const bool fb = feedback(y);
+  bool any = fb;
   for (size_t i = 0; i < force_.size(); ++i) any = any || force_[i] != 0.0;
   const bool friction = settings_.friction > 0.0 && model_.spring_legs;
   if (!any && !friction) return false;
@@ -46,8 +115,12 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   if (any) {
     const auto& body = model_.mechanism.bodies[model_.body];
     for (size_t i = 0; i < force_.size(); ++i) {
-      if (force_[i] == 0.0) continue;
-      const Vector3d F = force_[i] * push_world(i, y);  // on the body at the hip
+      double fi = force_[i] + fb_[i];
+      if (settings_.actuator_max_force > 0.0) {
+        fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
+      }
+      if (fi == 0.0) continue;
+      const Vector3d F = fi * push_world(i, y);  // on the body at the hip
       const pr::NodeRef& h = model_.hip_node[i];
       if (h.kind == pr::NodeRef::Kind::kMass) {
         f.segment<3>(3 * h.index) += F;
@@ -85,15 +158,17 @@ void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<doub
   // actuator forces) and each foot's height and momentum (normal force, slip).
   std::vector<int> cols;
   const int first = model_.mechanism.bodies[model_.body].first_mass;
-  bool any = false;
+  const bool fb = feedback(y);
+  bool any = fb;
   for (double fi : force_) any = any || fi != 0.0;
   if (any) {
     for (int k = 0; k < 4; ++k) {
-      for (int c = 0; c < 3; ++c) cols.push_back(6 * (first + k) + c);
+      // The feedback reads the body's angular velocity: its masses' momenta too.
+      for (int c = 0; c < (fb ? 6 : 3); ++c) cols.push_back(6 * (first + k) + c);
     }
     // A free leg's push direction follows its foot (and a dummy hip mass).
     for (size_t i = 0; i < force_.size(); ++i) {
-      if (force_[i] == 0.0 || !free_[i] || model_.foot[i] < 0) continue;
+      if ((force_[i] == 0.0 && !fb) || !free_[i] || model_.foot[i] < 0) continue;
       for (int c = 0; c < 3; ++c) cols.push_back(6 * model_.foot[i] + c);
       const pr::NodeRef& h = model_.hip_node[i];
       if (h.kind == pr::NodeRef::Kind::kMass) {

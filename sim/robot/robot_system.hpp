@@ -49,6 +49,9 @@ class RobotSystem final : public ode::OdeSystem {
     push_ = push;
   }
   const std::vector<double>& actuator_forces() const { return force_; }
+  /// Each leg's total actuator force at y [N]: the set force plus, for a grounded
+  /// leg, the stance attitude feedback (settings stance_kp, stance_kd).
+  std::vector<double> actuator_forces(const ode::Vec& y) const;
   /// Frees leg i's hip (stance with rotating hips: the slide becomes a slot) or
   /// locks it. A free leg's actuator pushes along the current foot -> hip line (like
   /// the leg spring), not along `push`.
@@ -69,6 +72,9 @@ class RobotSystem final : public ode::OdeSystem {
   /// Adds the extra forces into f (3 per mass); returns false when there are none.
   bool extra_forces(const ode::Vec& y, ode::Vec& f) const;
   double normal_force(const ode::Vec& y, int foot) const;
+  /// Stance attitude feedback: fills fb_ with each leg's extra actuator force
+  /// (zero for legs off the ground); false when it is off or no leg is grounded.
+  bool feedback(const ode::Vec& y) const;
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
@@ -78,6 +84,7 @@ class RobotSystem final : public ode::OdeSystem {
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
   mutable ode::Vec extra_, fp_, fm_;
+  mutable std::vector<double> fb_;
   mutable ode::Vec yp_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
 };

@@ -127,6 +127,17 @@ struct PseudoRigid {
   /// controller will ask it for at the predicted touchdown (running).
   bool hip_rotation = false;
   double max_leg_angle = 0.5;  ///< hip placement limit from body -z [rad]
+  /// Stance attitude feedback (running): while feet are on the ground, the grounded
+  /// legs' actuators add forces with zero net push that give the body a moment
+  /// M = -kp e - kd w about its roll (x) and pitch (y) axes, evaluated
+  /// continuously (e: tilt of the body z axis from the vertical, body frame [rad];
+  /// w: body angular velocity [rad/s]). Gains [N m/rad], [N m s/rad]; 0 = off.
+  double stance_kp[2] = {0.0, 0.0};
+  double stance_kd[2] = {0.0, 0.0};
+  double stance_max_moment = 0.0;  ///< smooth limit of each moment [N m]; 0 = none
+  bool stance_feedback() const {
+    return stance_kp[0] != 0.0 || stance_kp[1] != 0.0 || stance_kd[0] != 0.0 || stance_kd[1] != 0.0;
+  }
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).

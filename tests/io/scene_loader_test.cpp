@@ -295,10 +295,35 @@ TEST_CASE("unknown keys are rejected at every level", "[io][scene][errors]") {
     doc["disturbances"] = {{{"time", 1.0}, {"tim", 2.0}}};
     check_error(parse_error(doc), "/disturbances/0/tim", "time", "unknown key \"tim\"");
   }
+  SECTION("nested: /pseudo_rigid/stance_attitude/kpp") {
+    doc = shipped("pr_running.json");
+    doc["pseudo_rigid"]["stance_attitude"] = {{"kd", {10, 1}}, {"kpp", {1, 1}}};
+    check_error(parse_error(doc), "/pseudo_rigid/stance_attitude/kpp", "max_moment",
+                "unknown key \"kpp\"");
+  }
   SECTION("a key needing pointer escapes") {
     doc["body"]["a/b~c"] = 1;
     check_error(parse_error(doc), "/body/a~1b~0c", "a known key", "unknown key \"a/b~c\"");
   }
+}
+
+TEST_CASE("stance attitude feedback settings parse and round-trip", "[io][scene]") {
+  json doc = shipped("pr_running.json");
+  doc["pseudo_rigid"]["stance_attitude"] = {{"kp", {5, 2}}, {"kd", {10, 1}}, {"max_moment", 1.5}};
+  const scene::Scene s = io::parse_scene(doc, "pr.json");
+  CHECK(s.pseudo_rigid.stance_kp[0] == 5.0);
+  CHECK(s.pseudo_rigid.stance_kp[1] == 2.0);
+  CHECK(s.pseudo_rigid.stance_kd[0] == 10.0);
+  CHECK(s.pseudo_rigid.stance_kd[1] == 1.0);
+  CHECK(s.pseudo_rigid.stance_max_moment == 1.5);
+  CHECK(s.pseudo_rigid.stance_feedback());
+  const json r = io::scene_to_json(s)["pseudo_rigid"]["stance_attitude"];
+  CHECK(r["kd"] == json({10.0, 1.0}));
+  CHECK(r["max_moment"] == 1.5);
+  doc["pseudo_rigid"]["stance_attitude"] = {{"kd", {-1, 1}}};
+  CHECK_THROWS_AS(io::parse_scene(doc, "pr.json"), InputError);
+  doc["pseudo_rigid"].erase("stance_attitude");
+  CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
 }
 
 TEST_CASE("values of the wrong type are rejected", "[io][scene][errors]") {
