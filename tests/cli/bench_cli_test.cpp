@@ -27,12 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using cli_support::pronk;
-using cli_support::quote;
-using cli_support::Run;
-using cli_support::slurp;
-using cli_support::TempDir;
-using cli_support::write_file;
+using namespace cli_support;  // NOLINT(google-build-using-namespace): test helpers
 
 /// Every number finite, no null anywhere (nlohmann writes NaN as null).
 void check_finite_json(const json& j, const std::string& where = "") {

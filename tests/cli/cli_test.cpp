@@ -27,12 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using cli_support::pronk;
-using cli_support::quote;
-using cli_support::Run;
-using cli_support::slurp;
-using cli_support::TempDir;
-using cli_support::write_file;
+using namespace cli_support;  // NOLINT(google-build-using-namespace): test helpers
 
 const std::string kSceneDir = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/";
 

@@ -22,12 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using cli_support::pronk;
-using cli_support::quote;
-using cli_support::Run;
-using cli_support::slurp;
-using cli_support::TempDir;
-using cli_support::write_file;
+using namespace cli_support;  // NOLINT(google-build-using-namespace): test helpers
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 

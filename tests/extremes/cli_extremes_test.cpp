@@ -20,12 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using cli_support::pronk;
-using cli_support::quote;
-using cli_support::Run;
-using cli_support::slurp;
-using cli_support::TempDir;
-using cli_support::write_file;
+using namespace cli_support;  // NOLINT(google-build-using-namespace): test helpers
 
 /// No "nan" or "inf" token in any output file of the run directory.
 void check_no_nan(const std::string& dir) {
