@@ -467,10 +467,10 @@ void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
     jac_transfer(c.b, -cf.force);
   }
   for (const Surface& s : m_.surfaces) {
+    if (s.body >= 0) continue;  // body-attached: attached_surfaces_jacobian, below
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval e = eval_surface(s, n, y);
       if (!e.active) continue;
-      if (s.body >= 0) continue;  // below, per body
       Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
       if (e.normal > 0.0) {
         // F_t = -mu N g(v), g = v_t / w, w = sqrt(|v_t|^2 + v_s^2), v_t = P v with
