@@ -105,6 +105,8 @@ class Radau5Stepper final : public Stepper {
 
   void reset(const OdeSystem& sys, double t, const Vec& y) override {
     assert(y.size() == y_.size());
+    lu1_.use_structure(sys);
+    lu2_.use_structure(sys);
     t_ = t;
     t_prev_ = t;
     h_last_ = 0.0;

@@ -3,7 +3,8 @@
 // formulation of their code RODAS, with its embedded error estimate (the last
 // stage) and its 3rd-order dense output. The linear systems
 // (I/(gamma h) - J) k = rhs use dense partial-pivoting LU for small systems and
-// Eigen's SparseLU above SolverOptions::dense_lu_max_dimension. The Jacobian is
+// Eigen's SparseLU above SolverOptions::dense_lu_max_dimension (mechanical systems:
+// the dense LU of the momentum Schur complement, half the size). The Jacobian is
 // evaluated once per accepted base point (analytic when the system has one,
 // forward differences otherwise) and reused across rejected attempts; only the
 // factorisation is redone when h changes.
@@ -70,6 +71,7 @@ class Rodas4Stepper final : public Stepper {
 
   void reset(const OdeSystem& sys, double t, const Vec& y) override {
     assert(y.size() == y_.size());
+    lu_.use_structure(sys);
     t_ = t;
     t_prev_ = t;
     h_last_ = 0.0;
