@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pronk::pseudorigid {
 namespace {
@@ -269,11 +270,13 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
   }
   std::sort(masses.begin(), masses.end());
   masses.erase(std::unique(masses.begin(), masses.end()), masses.end());
-  // Central differences, one column at a time, all pairs at once. Only a position
-  // column of one of the body's own masses turns the frame; it is refitted from
-  // the unperturbed frame (Newton converges in one or two steps from there).
+  // Forward differences, one column at a time, against the unperturbed forces of the
+  // pairs the column moves. Only a position column of one of the body's own masses
+  // turns the frame; it is refitted from the unperturbed frame (Newton converges in
+  // one or two steps from there). The step sqrt(eps) (1 + |y|) balances truncation
+  // and round-off at ~1e-8 relative, far below what the stiff steppers need.
   ode::Vec yp = y;
-  std::vector<std::pair<int, Vector3d>> fp, fm;
+  std::vector<std::pair<int, Vector3d>> fp;
   std::vector<Vector3d> diff(m_.masses.size());
   const BodyFrame& frame0 = frames_[b];
   const std::array<Matrix3d, 4> omega0 = attitude_derivative(frame0, body.local);
@@ -283,42 +286,41 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
     const int fn = m_.bodies[m_.ghost_points[n.index].body].first_mass;
     return mass >= fn && mass < fn + 4;
   };
-  // Forces of the pairs that depend on mass `mass` (all of them when it is one of
-  // the body's own; the others' forces do not change and difference to zero).
-  auto forces = [&](const ode::Vec& yy, int mass, bool own, bool refit,
-                    std::vector<std::pair<int, Vector3d>>& out) {
-    out.clear();
-    BodyFrame frame = frame0;
-    std::array<Matrix3d, 4> omega = omega0;
-    if (refit) {
-      std::array<Vector3d, 4> x;
-      for (int i = 0; i < 4; ++i) x[i] = seg(yy, 6 * (fb + i));
-      frame = fit_attitude(x, body.local, &frame0.rotation);
-      omega = attitude_derivative(frame, body.local);
-    }
-    for (const auto& [s, n] : pairs) {
-      if (!own && !moves_with(n, mass)) continue;
-      attached_surface_forces(*s, n, yy, out, &frame, &omega);
-    }
-  };
+  // Unperturbed forces per pair.
+  std::vector<std::vector<std::pair<int, Vector3d>>> base(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    attached_surface_forces(*pairs[k].first, pairs[k].second, y, base[k], &frame0, &omega0);
+  }
   // Momenta enter only through the dampers: without one, position columns suffice.
   const int columns = damped ? 6 : 3;
+  const double step = std::sqrt(std::numeric_limits<double>::epsilon());
   for (int mass : masses) {
+    // All pairs depend on the body's own masses; the others' forces do not change with
+    // another mass and difference to zero.
     const bool own = mass >= fb && mass < fb + 4;
     for (int c = 0; c < columns; ++c) {
       const int col = 6 * mass + c;
-      const double h = 1e-6 * (1.0 + std::abs(y[col]));
-      const bool refit = own && c < 3;
-      yp[col] = y[col] + h;
-      forces(yp, mass, own, refit, fp);
-      yp[col] = y[col] - h;
-      forces(yp, mass, own, refit, fm);
-      yp[col] = y[col];
+      yp[col] = y[col] + step * (1.0 + std::abs(y[col]));
+      const double h = yp[col] - y[col];  // exactly representable
+      BodyFrame frame = frame0;
+      std::array<Matrix3d, 4> omega = omega0;
+      if (own && c < 3) {
+        std::array<Vector3d, 4> x;
+        for (int i = 0; i < 4; ++i) x[i] = seg(yp, 6 * (fb + i));
+        frame = fit_attitude(x, body.local, &frame0.rotation);
+        omega = attitude_derivative(frame, body.local);
+      }
       for (int t : masses) diff[t].setZero();
-      for (const auto& [t, f] : fp) diff[t] += f;
-      for (const auto& [t, f] : fm) diff[t] -= f;
+      for (size_t k = 0; k < pairs.size(); ++k) {
+        if (!own && !moves_with(pairs[k].second, mass)) continue;
+        fp.clear();
+        attached_surface_forces(*pairs[k].first, pairs[k].second, yp, fp, &frame, &omega);
+        for (const auto& [t, f] : fp) diff[t] += f;
+        for (const auto& [t, f] : base[k]) diff[t] -= f;
+      }
+      yp[col] = y[col];
       for (int t : masses) {
-        const Vector3d d = diff[t] / (2.0 * h);
+        const Vector3d d = diff[t] / h;
         for (int k = 0; k < 3; ++k) {
           if (d[k] != 0.0) triplets_.emplace_back(6 * t + 3 + k, col, d[k]);
         }
