@@ -82,6 +82,8 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
     so.event_tol = o.positive_or("event_tol", so.event_tol);
     so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
+    so.max_steps_per_second =
+        o.number_or("max_steps_per_second", so.max_steps_per_second, 0.0, 1e15);
     std::string err;
     if (!so.validate(&err)) {
       const std::string field = err.substr(0, err.find(':'));
@@ -127,7 +129,8 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"h_min", so.h_min},
               {"h_initial", so.h_initial},
               {"event_tol", so.event_tol},
-              {"max_steps", so.max_steps}}}};
+              {"max_steps", so.max_steps},
+              {"max_steps_per_second", so.max_steps_per_second}}}};
   // "auto" stays "auto" in the resolved scene: the choice depends on the run.
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);

@@ -351,6 +351,8 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
       so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
       so.event_tol = o.positive_or("event_tol", so.event_tol);
       so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
+      so.max_steps_per_second =
+          o.number_or("max_steps_per_second", so.max_steps_per_second, 0.0, 1e15);
       std::string err;
       if (!so.validate(&err)) {
         const std::string field = err.substr(0, err.find(':'));
@@ -486,7 +488,8 @@ json scene_to_json(const scene::Scene& s) {
         {"h_min", m.solver.h_min},
         {"h_initial", m.solver.h_initial},
         {"event_tol", m.solver.event_tol},
-        {"max_steps", m.solver.max_steps}}},
+        {"max_steps", m.solver.max_steps},
+        {"max_steps_per_second", m.solver.max_steps_per_second}}},
       {"fall", {{"min_height", m.fall_min_height}, {"max_tilt_deg", m.fall_max_tilt / kDeg}}}};
   return j;
 }

@@ -65,6 +65,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
                           const SolverOptions& options, StepObserver* observer) {
   IntegrateResult result;
   result.t = stepper.t();
+  result.t_start = stepper.t();
   const std::size_t ne = events.size();
   std::vector<double> g_prev(ne), g_new(ne);
   Vec y_event(sys.dimension());
@@ -73,9 +74,17 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
   const SolverCounters& c = stepper.counters();
   const long attempts_at_start = c.steps_accepted + c.steps_rejected;
   while (stepper.t() < t_end) {
-    if (c.steps_accepted + c.steps_rejected - attempts_at_start >= options.max_steps) {
+    const long attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
+    if (attempts >= options.max_steps) {
       result.reason = StopReason::kMaxSteps;
       result.t = stepper.t();
+      result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
+      return result;
+    }
+    if (options.crawling(attempts, stepper.t() - result.t_start)) {
+      result.reason = StopReason::kCrawling;
+      result.t = stepper.t();
+      result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
       return result;
     }
     const StepStatus status = stepper.step(sys, t_end);
@@ -83,6 +92,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
       result.reason =
           status == StepStatus::kNonFinite ? StopReason::kNonFinite : StopReason::kStepSizeCollapse;
       result.t = stepper.t();
+      result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
       return result;
     }
     const double t0 = stepper.t_prev();
@@ -95,6 +105,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
         result.reason = StopReason::kNonFinite;
         result.event_index = static_cast<int>(i);
         result.t = t1;
+        result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
         return result;
       }
       const int dir = crossing(events[i]->direction(), g_prev[i], g_new[i]);
@@ -114,6 +125,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
       result.reason = StopReason::kEvent;
       result.event_index = fired;
       result.t = t_fire;
+      result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
       return result;
     }
     if (observer != nullptr) observer->on_step(stepper, t1);
@@ -121,6 +133,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
   }
   result.reason = StopReason::kReachedEnd;
   result.t = stepper.t();
+  result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
   return result;
 }
 

@@ -43,6 +43,12 @@ struct SolverOptions {
   double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
   double event_tol = 1e-13;    ///< event time tolerance [s]
   long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
+  /// Adaptive methods: the crawl guard. A run whose step attempts exceed
+  /// kStepBudgetFloor + max_steps_per_second x (simulated time since it started) ends with a
+  /// reason instead of grinding on at tiny steps (a near-stall at a contact switch took
+  /// > 1e7 attempts and 900 s of wall time for 0.2 s). Normal runs use ~1e3-1e5 attempts per
+  /// simulated second. 0 turns the guard off. [1/s]
+  double max_steps_per_second = 1e6;
   /// rodas4, radau5: systems with at most this many states factorise with dense LU,
   /// larger ones with Eigen's SparseLU (crossover measured in bench_lu_crossover: sparse wins from
   /// ~192 states).
@@ -50,6 +56,14 @@ struct SolverOptions {
 
   /// Checks every field; on failure writes "field: value: rule" into *error.
   bool validate(std::string* error) const;
+
+  /// Step attempts every run may take before the crawl guard applies.
+  static constexpr long kStepBudgetFloor = 100000;
+  /// True when `attempts` step attempts over `simulated` seconds [s] exceed the crawl
+  /// guard's budget (adaptive methods with max_steps_per_second > 0 only).
+  bool crawling(long attempts, double simulated) const;
+  /// "N step attempts for T s simulated up to t = ... s (budget ...)": the reason of a crawl.
+  std::string crawl_reason(long attempts, double simulated, double t) const;
 };
 
 /// Cost counters of a run; accumulated over restarts.
@@ -94,12 +108,15 @@ class Stepper {
 std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
 
 /// Why integrate() returned.
-enum class StopReason { kReachedEnd, kEvent, kStepSizeCollapse, kNonFinite, kMaxSteps };
+/// kCrawling: SolverOptions::crawling() (the crawl guard).
+enum class StopReason { kReachedEnd, kEvent, kStepSizeCollapse, kNonFinite, kMaxSteps, kCrawling };
 
 struct IntegrateResult {
   StopReason reason = StopReason::kReachedEnd;
   int event_index = -1;  ///< index into events when reason == kEvent
   double t = 0.0;        ///< time reached (event time when reason == kEvent)
+  double t_start = 0.0;  ///< time the call started from [s]
+  long attempts = 0;     ///< step attempts (accepted + rejected) of this call
 };
 
 /// Integrates from the stepper's current (t, y) until t_end or until the first

@@ -1,4 +1,5 @@
 // Method names and SolverOptions::validate().
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -82,8 +83,27 @@ bool SolverOptions::validate(std::string* error) const {
   if (max_steps <= 0) {
     return fail(error, "max_steps", static_cast<double>(max_steps), "must be > 0");
   }
+  if (!(max_steps_per_second >= 0.0) || !std::isfinite(max_steps_per_second)) {
+    return fail(error, "max_steps_per_second", max_steps_per_second, "must be >= 0 and finite");
+  }
   if (error != nullptr) error->clear();
   return true;
+}
+
+bool SolverOptions::crawling(long attempts, double simulated) const {
+  if (!is_adaptive(method) || !(max_steps_per_second > 0.0)) return false;
+  return static_cast<double>(attempts) >
+         static_cast<double>(kStepBudgetFloor) + max_steps_per_second * std::max(0.0, simulated);
+}
+
+std::string SolverOptions::crawl_reason(long attempts, double simulated, double t) const {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "solver crawling: %ld step attempts for %.6g s simulated up to t = %.9g s "
+                "(budget %ld + max_steps_per_second %.3g per simulated second); loosen the "
+                "tolerances, soften the stiffest element or raise max_steps_per_second",
+                attempts, simulated, t, kStepBudgetFloor, max_steps_per_second);
+  return buf;
 }
 
 }  // namespace pronk::ode

@@ -230,6 +230,14 @@ RunSummary simulate(const Mechanism& m) {
         diverge(buf);
         break;
       }
+      {
+        const ode::SolverCounters& c = stepper->counters();
+        const long attempts = c.steps_accepted + c.steps_rejected;
+        if (opt.solver.crawling(attempts, tb)) {
+          diverge(opt.solver.crawl_reason(attempts, tb, tb));
+          break;
+        }
+      }
       if (steps >= opt.solver.max_steps) {
         std::snprintf(buf, sizeof buf, "step limit %ld reached at t = %.9g s", opt.solver.max_steps,
                       tb);

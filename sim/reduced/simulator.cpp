@@ -252,6 +252,10 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
         end_run(RunStatus::kDiverged, "step limit reached at t = " + fmt(t) + " s");
         running = false;
         continue;
+      case ode::StopReason::kCrawling:
+        end_run(RunStatus::kDiverged, sim.solver.crawl_reason(r.attempts, t - r.t_start, t));
+        running = false;
+        continue;
       default:
         break;
     }

@@ -573,8 +573,24 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         end_run(reduced::RunStatus::kDiverged, "step limit reached at t = " + fmt(t) + " s");
         running = false;
         continue;
+      case ode::StopReason::kCrawling:
+        end_run(reduced::RunStatus::kDiverged,
+                prs.solver.crawl_reason(r.attempts, t - r.t_start, t));
+        running = false;
+        continue;
       default:
         break;
+    }
+    {
+      // The crawl guard over the whole run: events that fire again and again (a foot
+      // chattering at a contact switch) restart integrate() before its own guard trips.
+      const ode::SolverCounters& c = stepper->counters();
+      const long attempts = c.steps_accepted + c.steps_rejected;
+      if (prs.solver.crawling(attempts, t)) {
+        end_run(reduced::RunStatus::kDiverged, prs.solver.crawl_reason(attempts, t, t));
+        running = false;
+        continue;
+      }
     }
     const double balance =
         msys.energies(y).total() + run.dissipated - run.work - result.monitors.hip_work;

@@ -115,6 +115,7 @@ void check_same_scene(const scene::Scene& a, const scene::Scene& b) {
   CHECK(m.solver.h_initial == n.solver.h_initial);
   CHECK(m.solver.event_tol == n.solver.event_tol);
   CHECK(m.solver.max_steps == n.solver.max_steps);
+  CHECK(m.solver.max_steps_per_second == n.solver.max_steps_per_second);
   CHECK(m.fall_min_height == n.fall_min_height);
   CHECK(m.fall_max_tilt == n.fall_max_tilt);
 }
@@ -403,6 +404,11 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     doc["simulation"]["max_strides"] = 0;
     check_error(parse_error(doc), "/simulation/max_strides", "an integer in [1, 1000000000]",
                 "number 0");
+  }
+  SECTION("negative crawl guard") {
+    doc["simulation"]["solver"]["max_steps_per_second"] = -1;
+    check_error(parse_error(doc), "/simulation/solver/max_steps_per_second",
+                "a finite number in [0, 1e+15]", "number -1");
   }
   SECTION("h_min not below h_max") {
     doc["simulation"]["solver"]["h_min"] = 0.5;

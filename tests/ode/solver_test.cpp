@@ -381,6 +381,50 @@ TEST_CASE("ode: max_steps limits one integrate() call", "[ode]") {
   CHECK(s->counters().steps_accepted + s->counters().steps_rejected == 10);
 }
 
+// The crawl guard. Reference: dy/dt = -sign(y) from y = 1 reaches y = 0 at t = 1 and then
+// slides along y = 0 (Filippov); an adaptive method must cross the discontinuity in every
+// step, so its steps shrink to the tolerance and it crawls (~1e9 steps per second).
+TEST_CASE("ode: the crawl guard ends an adaptive run that crawls at a discontinuity", "[ode]") {
+  class Relay final : public OdeSystem {
+   public:
+    int dimension() const override { return 1; }
+    void rhs(double, const Vec& y, Vec& d) const override { d[0] = y[0] > 0.0 ? -1.0 : 1.0; }
+  } relay;
+  const Method m = GENERATE(Method::kDopri5, Method::kRodas4);
+  SolverOptions o;
+  o.method = m;
+  o.rtol = o.atol = 1e-9;
+  auto s = make_stepper(o, 1);
+  s->reset(relay, 0.0, Vec::Ones(1));
+  const IntegrateResult r = integrate(relay, *s, 2.0, {}, o);
+  INFO(to_string(m) << ": t " << r.t << ", attempts " << r.attempts);
+  CHECK(r.reason == StopReason::kCrawling);
+  CHECK(r.t > 1.0 - 1e-6);  // the smooth part is integrated normally
+  CHECK(r.t < 1.1);
+  const double budget = SolverOptions::kStepBudgetFloor + o.max_steps_per_second * r.t;
+  CHECK(static_cast<double>(r.attempts) > budget);
+  CHECK(static_cast<double>(r.attempts) <= budget + 1.0);  // stops at the first attempt over
+  CHECK(r.attempts == s->counters().steps_accepted + s->counters().steps_rejected);
+  CHECK(std::abs(s->y()[0]) < 1e-6);
+  const std::string why = o.crawl_reason(r.attempts, r.t, r.t);
+  CHECK(why.find(std::to_string(r.attempts)) != std::string::npos);
+
+  // Off (0): only max_steps ends it.
+  o.max_steps_per_second = 0.0;
+  o.max_steps = 200000;
+  auto s2 = make_stepper(o, 1);
+  s2->reset(relay, 0.0, Vec::Ones(1));
+  CHECK(integrate(relay, *s2, 2.0, {}, o).reason == StopReason::kMaxSteps);
+  // Fixed-step methods are never "crawling": their step is the user's.
+  o.method = Method::kEuler;
+  o.max_steps_per_second = 1.0;
+  CHECK_FALSE(o.crawling(10 * SolverOptions::kStepBudgetFloor, 1.0));
+  o.max_steps_per_second = -1.0;
+  std::string err;
+  CHECK_FALSE(o.validate(&err));
+  CHECK(err.find("max_steps_per_second") != std::string::npos);
+}
+
 TEST_CASE("ode: a non-finite event value stops the integration", "[ode]") {
   class NanEvent final : public EventFunction {
    public:
