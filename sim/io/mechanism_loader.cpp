@@ -166,6 +166,7 @@ class Loader {
     j["h_max"] = o.solver.h_max;
     j["h_min"] = o.solver.h_min;
     j["max_steps"] = o.solver.max_steps;
+    j["max_steps_per_second"] = o.solver.max_steps_per_second;
     j["dense_lu_max_dimension"] = o.solver.dense_lu_max_dimension;
     j["error_norm"] = o.error_norm == pr::ErrorNorm::kBody ? "body" : "state";
     j["euler_set"] = o.euler_313 ? "313" : "123";
@@ -219,6 +220,8 @@ class Loader {
     o->solver.h_max = s.positive_or("h_max", o->solver.h_max);
     o->solver.h_min = s.positive_or("h_min", o->solver.h_min);
     o->solver.max_steps = s.integer_or("max_steps", o->solver.max_steps, 1, 1000000000000L);
+    o->solver.max_steps_per_second =
+        s.number_or("max_steps_per_second", o->solver.max_steps_per_second, 0.0, 1e15);
     o->solver.dense_lu_max_dimension = static_cast<int>(
         s.integer_or("dense_lu_max_dimension", o->solver.dense_lu_max_dimension, 0, 1000000));
     o->error_norm = s.choice_or("error_norm", "state", {"state", "body"}) == "body"

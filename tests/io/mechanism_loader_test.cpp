@@ -77,6 +77,8 @@ TEST_CASE("a valid mechanism document builds the expected components", "[io][mec
   REQUIRE(m.body_forces.size() == 1);
   CHECK(m.body_forces[0].t_end == 0.2);
   CHECK(m.simulation.solver.method == pronk::ode::Method::kRodas4);
+  CHECK(m.simulation.solver.max_steps_per_second == 1e6);
+  CHECK(lm.resolved["simulation"]["max_steps_per_second"] == 1e6);
   // Full tensor equal to the principal one gives the same mass placement.
   json full = base();
   full["bodies"][0]["inertia"] = json::parse("[[1,0,0],[0,1,0],[0,0,0.5]]");
@@ -136,6 +138,8 @@ TEST_CASE("bad mechanism input names the exact JSON Pointer", "[io][mechanism]")
       {"force window ends before it starts", "/forces/0/t_end", "0.05", "/forces/0/t_end"},
       {"unknown method", "/simulation/method", "\"rk45\"", "/simulation/method"},
       {"bad error norm", "/simulation/error_norm", "\"max\"", "/simulation/error_norm"},
+      {"negative crawl guard", "/simulation/max_steps_per_second", "-1",
+       "/simulation/max_steps_per_second"},
       {"stiffness word other than auto", "/simulation/internal_stiffness", "\"stiff\"",
        "/simulation/internal_stiffness"},
       {"stiffness of wrong type", "/simulation/contact_stiffness", "true",
