@@ -9,45 +9,45 @@ set format y '10^{%L}'
 set grid
 set key outside right
 $d0 << EOD
-10000 0.0403175
-100000 0.168786
-1e+06 0.583879
-1e+07 2.20099
-1e+08 6.13823
+10000 0.0404321
+100000 0.164441
+1e+06 0.572197
+1e+07 1.90084
+1e+08 6.06945
 EOD
 $d1 << EOD
-10000 0.00588164
-100000 0.0199097
-1e+06 0.0691654
-1e+07 0.252348
-1e+08 0.713467
+10000 0.00631697
+100000 0.0201372
+1e+06 0.0708642
+1e+07 0.245335
+1e+08 0.707889
 EOD
 $d2 << EOD
-10000 0.124454
-100000 0.292607
-1e+06 0.552036
-1e+07 0.295549
-1e+08 0.474536
+10000 0.0608389
+100000 0.129581
+1e+06 0.184913
+1e+07 0.129097
+1e+08 0.195112
 EOD
 $d3 << EOD
-10000 0.0337471
-100000 0.0529023
-1e+06 0.086256
-1e+07 0.142417
-1e+08 0.253973
+10000 0.0234675
+100000 0.0344723
+1e+06 0.0551033
+1e+07 0.0898942
+1e+08 0.173981
 EOD
 $d4 << EOD
-10000 0.0650839
-100000 0.150465
-1e+06 0.301501
-1e+07 0.8382
-1e+08 1.14263
+10000 0.0434541
+100000 0.0987798
+1e+06 0.199858
+1e+07 0.419747
+1e+08 0.890353
 EOD
 $d5 << EOD
-10000 0.00147318
-100000 0.00485987
-1e+06 0.0224438
-1e+07 0.0458561
-1e+08 0.150772
+10000 0.00179179
+100000 0.00486696
+1e+06 0.0155566
+1e+07 0.0513718
+1e+08 0.150745
 EOD
 plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d1 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'radau5 (state norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d4 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced, $d5 using 1:2 with linespoints title 'verlet (state norm)' noenhanced
