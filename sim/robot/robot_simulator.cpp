@@ -472,6 +472,15 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     // each leg along its total impulse; the foot moves with the leg (its energy
     // change is hip work).
     control::BodyState s = run.body_state(y);
+    // Body attitude after tf of free flight (constant angular velocity).
+    auto predicted_rotation = [&](double tf) {
+      const Vector3d w_world = msys.body_omega(model.body, y);
+      Matrix3d R_td = msys.frames(y)[model.body].rotation;
+      if (w_world.norm() * tf > 1e-12) {
+        R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
+      }
+      return R_td;
+    };
     const double dz = s.position.z() - l;
     if (dz > 0.0) {
       const double tf = std::sqrt(2.0 * dz / g);
@@ -487,21 +496,38 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         P.z() += total_mass * g * spring_stance;
         // The hips' mean speed over the stance: the CoM's plus half the change asked.
         const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass;
-        const bool held_roll = prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0;
+        const bool held_roll =
+            (prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0) && !prs.powered_abduction;
         // Desired takeoff velocity: lateral as the controller asks, vertical as the
         // springs return it (the touchdown speed).
         Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass;
         v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
         const Vector3d d = free_leg_direction(P, v_mean, spring_stance, model.rest_length[0],
                                               prs.max_leg_angle, held_roll, v_takeoff);
-        const Vector3d w_world = msys.body_omega(model.body, y);
-        Matrix3d R_td = msys.frames(y)[model.body].rotation;
-        if (w_world.norm() * tf > 1e-12) {
-          R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
-        }
-        u.assign(legs, R_td.transpose() * d);
+        u.assign(legs, predicted_rotation(tf).transpose() * d);
       } else {
         u = leg_directions(pred, legs, prs.max_leg_angle);
+      }
+      // Level feet: each leg's rest length such that every foot reaches the ground
+      // together at the predicted touchdown attitude R_td (CoM at s.position).
+      std::vector<double> rest(legs);
+      for (size_t i = 0; i < legs; ++i) {
+        rest[i] = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
+      }
+      if (prs.level_feet && free_stance) {
+        const Matrix3d R_td = predicted_rotation(tf);
+        double z_mean = 0.0;
+        std::vector<double> hz(legs), dz_leg(legs);
+        for (size_t i = 0; i < legs; ++i) {
+          hz[i] = s.position.z() + (R_td * model.hip[i]).z();
+          dz_leg[i] = (R_td * u[i]).z();
+          z_mean += (hz[i] + model.rest_length[i] * dz_leg[i]) / static_cast<double>(legs);
+        }
+        for (size_t i = 0; i < legs; ++i) {
+          if (sys.free(i) || !(dz_leg[i] < -0.1)) continue;
+          rest[i] = std::clamp((z_mean - hz[i]) / dz_leg[i], 0.75 * model.rest_length[i],
+                               1.25 * model.rest_length[i]);
+        }
       }
       const double e_before = msys.energies(y).total();
       const pr::BodyFrame f = msys.frames(y)[model.body];
@@ -514,7 +540,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const Vector3d d_old = f.rotation * (-run.push[i]);
         const Vector3d d_new = f.rotation * u[i];
         const Vector3d xf = y.segment<3>(6 * foot);
-        const double ext = (xf - hip).dot(d_old);
+        // (the spring keeps its deflection when its rest length changes)
+        double& rest_now = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
+        const double ext = (xf - hip).dot(d_old) + rest[i] - rest_now;
+        rest_now = rest[i];
         const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
                               (f.com_velocity + w.cross(xf - f.com));
         const Vector3d xn = hip + ext * d_new;
@@ -533,6 +562,13 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   size_t next_disturbance = 0;
   // A run starting in the air places its legs for the first touchdown.
   if (model.spring_legs && prs.hip_rotation) place_legs(t, y);
+  // The stance lateral law's setpoint, held over each integration segment.
+  auto set_lateral = [&](double time) {
+    sys.set_lateral_setpoint(
+        scene.controller.setpoint_position.y() + scene.controller.setpoint_velocity.y() * time,
+        scene.controller.setpoint_velocity.y());
+  };
+  set_lateral(t);
   stepper->reset(sys, t, y);
   observer.start(y);
   bool running = true;
@@ -731,8 +767,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           // The hip turns freely about its pitch axis: the foot is held in the plane of
           // the leg and the body x axis (a slot), so the leg swings fore-aft but not
           // sideways (ab/adduction held).
+          // With powered ab/adduction the hip motor holds the leg sideways instead
+          // (RobotSystem's stance feedback): no slot.
           const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
-          if (nrm.norm() > 1e-6) {
+          if (nrm.norm() > 1e-6 && !prs.powered_abduction) {
             slide.type = pr::SurfaceType::kPlane;
             slide.bilateral = true;
             slide.direction = nrm.normalized();
@@ -795,7 +833,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       }
       if (t >= sim.duration) running = false;
     }
-    if (running) stepper->reset(sys, t, y);
+    if (running) {
+      set_lateral(t);
+      stepper->reset(sys, t, y);
+    }
   }
   if (have_stride && !current.has_apex) {
     current.P_delivered = total_momentum(y) - p_touchdown +
