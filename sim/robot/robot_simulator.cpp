@@ -113,12 +113,17 @@ class BottomEvent final : public ode::EventFunction {
   const RobotModel& m_;
 };
 
-/// A foot crossing the ground plane z = 0: falling while its hip is locked (the
-/// foot lands: the hip is freed), rising while it is free (lift-off: locked again).
+/// A foot crossing the ground plane z = 0 falling while its hip is locked (the foot
+/// lands: the hip is freed), or rising through kFootLift above it while the hip is
+/// free (lift-off: locked again). The hysteresis keeps a foot grazing the ground
+/// (z ~ 0, v_z ~ 0) from landing and lifting off at the same instant forever.
+constexpr double kFootLift = 2e-4;  ///< [m]
 class FootEvent final : public ode::EventFunction {
  public:
   FootEvent(const RobotSystem& sys, size_t leg, int foot) : sys_(sys), leg_(leg), foot_(foot) {}
-  double value(double, const ode::Vec& y) const override { return y[6 * foot_ + 2]; }
+  double value(double, const ode::Vec& y) const override {
+    return y[6 * foot_ + 2] - (sys_.free(leg_) ? kFootLift : 0.0);
+  }
   int direction() const override { return sys_.free(leg_) ? 1 : -1; }
 
  private:
@@ -761,7 +766,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const int foot = model.foot[i];
         const double z = y[6 * foot + 2];
         const bool land = i == first ? !sys.free(i) : !sys.free(i) && z <= 0.0;
-        const bool lift = i == first ? sys.free(i) : sys.free(i) && z > 0.0;
+        const bool lift = i == first ? sys.free(i) : sys.free(i) && z >= kFootLift;
         pr::Surface& slide = mech.surfaces[model.slide[i]];
         if (land) {
           // The hip turns freely about its pitch axis: the foot is held in the plane of
