@@ -276,8 +276,8 @@ TEST_CASE("stance attitude feedback removes the running robot's period-2 roll mo
 // the body pivots on them (measured: first-stance lateral impulse +0.97 N s for
 // -0.12 asked, roll 10.4 -> -22.5 deg by the next touchdown, tilted past 60 deg at
 // t = 1.25 s). With them all four feet land together and the stance feedback levels
-// the body in the first stance (measured: roll -0.33 deg at the second touchdown,
-// lateral impulse +0.11 N s).
+// the body in the first stance (measured: roll -1.50 deg at the second touchdown,
+// first-stance lateral impulse +0.11 N s, roll within 0.6 deg from the third touchdown on).
 TEST_CASE("level feet let the running robot recover from a 10 deg roll landing",
           "[robot][heavy]") {
   const std::vector<std::string> shortened = {"/simulation/duration=1.5"};
@@ -290,10 +290,10 @@ TEST_CASE("level feet let the running robot recover from a 10 deg roll landing",
   CHECK(std::abs(open.run.strides[1].euler123.x()) > 15.0 * kDeg);
   REQUIRE(level.run.status == reduced::RunStatus::kCompleted);
   REQUIRE(level.run.strides.size() >= 5);
-  CHECK(std::abs(level.run.strides[1].euler123.x()) < 1.0 * kDeg);
+  CHECK(std::abs(level.run.strides[1].euler123.x()) < 2.5 * kDeg);
   CHECK(std::abs(level.run.strides[0].P_delivered.y()) < 0.3);
-  for (size_t k = 1; k < level.run.strides.size(); ++k) {
-    CHECK(std::abs(level.run.strides[k].euler123.x()) < 2.0 * kDeg);
+  for (size_t k = 2; k < level.run.strides.size(); ++k) {
+    CHECK(std::abs(level.run.strides[k].euler123.x()) < 1.0 * kDeg);
   }
   CHECK(level.monitors.max_slip <= 0.01);
   CHECK(level.monitors.energy_drift <= 1e-3 * level.monitors.energy_scale);
