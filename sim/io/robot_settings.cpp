@@ -67,19 +67,6 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   } else {
     r.optional("stance_attitude");
   }
-  if (r.has("stance_abduction")) {
-    JsonReader a = r.object("stance_abduction");
-    p.powered_abduction = true;
-    p.lateral_kp = a.number_or("lateral_kp", p.lateral_kp, 0.0, 1e6);
-    p.lateral_kd = a.number_or("lateral_kd", p.lateral_kd, 0.0, 1e6);
-    p.yaw_kp = a.number_or("yaw_kp", p.yaw_kp, 0.0, 1e6);
-    p.yaw_kd = a.number_or("yaw_kd", p.yaw_kd, 0.0, 1e6);
-    p.abduction_friction_share =
-        a.number_or("friction_share", p.abduction_friction_share, 0.0, 1.0);
-    a.finish();
-  } else {
-    r.optional("stance_abduction");
-  }
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
@@ -144,13 +131,6 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"event_tol", so.event_tol},
               {"max_steps", so.max_steps}}}};
   // "auto" stays "auto" in the resolved scene: the choice depends on the run.
-  if (p.powered_abduction) {
-    j["stance_abduction"] = {{"lateral_kp", p.lateral_kp},
-                             {"lateral_kd", p.lateral_kd},
-                             {"yaw_kp", p.yaw_kp},
-                             {"yaw_kd", p.yaw_kd},
-                             {"friction_share", p.abduction_friction_share}};
-  }
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
   return j;
@@ -182,8 +162,7 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :
              {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
-              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "stance_abduction",
-              "level_feet"}) {
+              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       }

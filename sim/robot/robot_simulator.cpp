@@ -501,8 +501,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         P.z() += total_mass * g * spring_stance;
         // The hips' mean speed over the stance: the CoM's plus half the change asked.
         const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass;
-        const bool held_roll =
-            (prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0) && !prs.powered_abduction;
+        const bool held_roll = prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0;
         // Desired takeoff velocity: lateral as the controller asks, vertical as the
         // springs return it (the touchdown speed).
         Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass;
@@ -567,13 +566,6 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   size_t next_disturbance = 0;
   // A run starting in the air places its legs for the first touchdown.
   if (model.spring_legs && prs.hip_rotation) place_legs(t, y);
-  // The stance lateral law's setpoint, held over each integration segment.
-  auto set_lateral = [&](double time) {
-    sys.set_lateral_setpoint(
-        scene.controller.setpoint_position.y() + scene.controller.setpoint_velocity.y() * time,
-        scene.controller.setpoint_velocity.y());
-  };
-  set_lateral(t);
   stepper->reset(sys, t, y);
   observer.start(y);
   bool running = true;
@@ -772,10 +764,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           // The hip turns freely about its pitch axis: the foot is held in the plane of
           // the leg and the body x axis (a slot), so the leg swings fore-aft but not
           // sideways (ab/adduction held).
-          // With powered ab/adduction the hip motor holds the leg sideways instead
-          // (RobotSystem's stance feedback): no slot.
           const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
-          if (nrm.norm() > 1e-6 && !prs.powered_abduction) {
+          if (nrm.norm() > 1e-6) {
             slide.type = pr::SurfaceType::kPlane;
             slide.bilateral = true;
             slide.direction = nrm.normalized();
@@ -838,10 +828,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       }
       if (t >= sim.duration) running = false;
     }
-    if (running) {
-      set_lateral(t);
-      stepper->reset(sys, t, y);
-    }
+    if (running) stepper->reset(sys, t, y);
   }
   if (have_stride && !current.has_apex) {
     current.P_delivered = total_momentum(y) - p_touchdown +

@@ -17,8 +17,7 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
       force_(model.hip.size(), 0.0),
       push_(model.hip.size(), Vector3d::UnitZ()),
       free_(model.hip.size(), false),
-      fb_(model.hip.size(), 0.0),
-      ab_(model.hip.size(), 0.0) {
+      fb_(model.hip.size(), 0.0) {
   for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   const int nm = static_cast<int>(mechanism.masses.size());
   extra_ = fp_ = fm_ = ode::Vec::Zero(3 * nm);
@@ -40,25 +39,14 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
 }
 
-Vector3d RobotSystem::abduction_direction(size_t i, const ode::Vec& y) const {
-  const Eigen::Matrix3d& R = sys_.frames(y)[model_.body].rotation;
-  const Vector3d d =
-      y.segment<3>(6 * model_.foot[i]) - sys_.node_position(model_.hip_node[i], y);  // hip -> foot
-  const Vector3d e = d.cross(R.col(0));
-  const double n = e.norm();
-  return n > 1e-12 ? Vector3d(e / n) : Vector3d(R.col(1));
-}
-
 bool RobotSystem::feedback(const ode::Vec& y) const {
   std::fill(fb_.begin(), fb_.end(), 0.0);
-  std::fill(ab_.begin(), ab_.end(), 0.0);
   if (!settings_.stance_feedback() || !settings_.actuators) return false;
   std::vector<size_t> g;
   for (size_t i = 0; i < free_.size(); ++i) {
     if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
   }
   if (g.size() < 3) return false;  // partial landings: no differential push
-  const bool powered = settings_.powered_abduction;
   const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
   const Eigen::Matrix3d R = fr.rotation;
   const Vector3d com = fr.com;
@@ -70,28 +58,18 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   const Vector3d tilt =
       s > 1e-15 ? Vector3d(R.transpose() * axis * (std::atan2(s, zb.z()) / s)) : Vector3d::Zero();
   const Vector3d w = R.transpose() * sys_.body_omega(model_.body, y);
-  Eigen::Vector3d b(0.0, 0.0, 0.0);  // moment about body x, y, z [N m]
-  for (int k = 0; k < 2; ++k) b[k] = settings_.stance_kp[k] * tilt[k] - settings_.stance_kd[k] * w[k];
-  if (powered) {
-    const double yaw = std::atan2(R(1, 0), R(0, 0));
-    b[2] = -settings_.yaw_kp * yaw - settings_.yaw_kd * w.z();
-  }
-  // Smooth saturation at the moment limit.
-  const double mmax = settings_.stance_max_moment;
-  if (mmax > 0.0) {
-    for (int k = 0; k < 3; ++k) b[k] = mmax * std::tanh(b[k] / mmax);
+  Eigen::Vector3d b(0.0, 0.0, 0.0);  // moment about body x, y [N m]; net push 0
+  for (int k = 0; k < 2; ++k) {
+    b[k] = settings_.stance_kp[k] * tilt[k] - settings_.stance_kd[k] * w[k];
+    // Smooth saturation at the moment limit.
+    const double m = settings_.stance_max_moment;
+    if (m > 0.0) b[k] = m * std::tanh(b[k] / m);
   }
   // Minimum-norm leg forces giving that moment with no net force along the legs'
   // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).
-  // With powered ab/adduction the unknowns are each leg's force f_i along u_i (at the
-  // hip) and its ab/adduction force a_i along e_i (on the body at the foot's point p_i);
-  // the rows are the three moments, the push along n, the world fore-aft force (0)
-  // and the world lateral force (the lateral law).
-  const int ng = static_cast<int>(g.size());
-  const int rows = powered ? 6 : 3;
-  const int cols = powered ? 2 * ng : ng;
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(rows);
+  // With fewer than three legs down the moment may need a net push (or pull).
+  const int rows = g.size() >= 3 ? 3 : 2;
+  Eigen::MatrixXd A(rows, static_cast<int>(g.size()));
   std::vector<Vector3d> u(g.size());
   Vector3d n = Vector3d::Zero();
   for (size_t k = 0; k < g.size(); ++k) {
@@ -99,60 +77,26 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     n += u[k];
   }
   n.normalize();
-  for (int k = 0; k < ng; ++k) {
-    const size_t i = g[static_cast<size_t>(k)];
-    const Vector3d r = sys_.node_position(model_.hip_node[i], y) - com;
+  for (size_t k = 0; k < g.size(); ++k) {
+    const Vector3d r = sys_.node_position(model_.hip_node[g[k]], y) - com;
     const Vector3d m = R.transpose() * r.cross(u[k]);
-    A(0, k) = m.x();
-    A(1, k) = m.y();
-    if (powered) {
-      A(2, k) = m.z();
-      A(3, k) = u[k].dot(n);
-      A(4, k) = u[k].x();
-      A(5, k) = u[k].y();
-      const Vector3d e = abduction_direction(i, y);
-      const Vector3d ma = R.transpose() * (y.segment<3>(6 * model_.foot[i]) - com).cross(e);
-      A(0, ng + k) = ma.x();
-      A(1, ng + k) = ma.y();
-      A(2, ng + k) = ma.z();
-      A(3, ng + k) = e.dot(n);
-      A(4, ng + k) = e.x();
-      A(5, ng + k) = e.y();
-    } else {
-      A(2, k) = u[k].dot(n);
-    }
+    A(0, static_cast<int>(k)) = m.x();
+    A(1, static_cast<int>(k)) = m.y();
+    if (rows == 3) A(2, static_cast<int>(k)) = u[k].dot(n);
   }
-  rhs[0] = b[0];
-  rhs[1] = b[1];
-  if (powered) {
-    rhs[2] = b[2];
-    rhs[5] = -settings_.lateral_kp * (com.y() - lateral_y_) -
-             settings_.lateral_kd * (fr.com_velocity.y() - lateral_vy_);
-  }
-  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(rhs);
+  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b.head(rows));
   // A leg can only pull its foot as far as its spring pushes it: the total actuator
   // force stays above minus the spring force (or the set force, if lower), so a foot
   // just landed is not lifted off again.
-  for (int k = 0; k < ng; ++k) {
-    const size_t i = g[static_cast<size_t>(k)];
+  for (size_t k = 0; k < g.size(); ++k) {
+    const size_t i = g[k];
     const double length =
         (sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i])).norm();
     const double rest = mech_.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
     const double spring = settings_.leg_stiffness * std::max(0.0, rest - length);
-    fb_[i] = std::max(f[k], std::min(0.0, -spring - force_[i]));
-    if (powered) {
-      // Within the foot's grip: smooth saturation at a share of mu N.
-      const double grip =
-          settings_.abduction_friction_share * settings_.friction * normal_force(y, model_.foot[i]);
-      ab_[i] = grip > 0.0 ? grip * std::tanh(f[ng + k] / grip) : 0.0;
-    }
+    fb_[i] = std::max(f[static_cast<int>(k)], std::min(0.0, -spring - force_[i]));
   }
   return true;
-}
-
-std::vector<double> RobotSystem::abduction_forces(const ode::Vec& y) const {
-  feedback(y);
-  return ab_;
 }
 
 std::vector<double> RobotSystem::actuator_forces(const ode::Vec& y) const {
@@ -187,24 +131,6 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
         for (int k = 0; k < 4; ++k) f.segment<3>(3 * (body.first_mass + k)) += g.weights[k] * F;
       }
       if (model_.foot[i] >= 0) f.segment<3>(3 * model_.foot[i]) -= F;
-    }
-    // Ab/adduction: the hip motor's force across the leg on the foot, reacted by the
-    // body at the foot's point (barycentric weights over the four body masses: the
-    // body gets the force at the hip plus the motor's torque).
-    for (size_t i = 0; i < ab_.size() && fb; ++i) {
-      if (ab_[i] == 0.0) continue;
-      const int foot = model_.foot[i];
-      const Vector3d F = ab_[i] * abduction_direction(i, y);  // on the body
-      Eigen::Matrix4d M;
-      for (int k = 0; k < 4; ++k) {
-        M.block<3, 1>(0, k) = y.segment<3>(6 * (body.first_mass + k));
-        M(3, k) = 1.0;
-      }
-      Eigen::Vector4d p;
-      p << y.segment<3>(6 * foot), 1.0;
-      const Eigen::Vector4d wts = M.partialPivLu().solve(p);
-      for (int k = 0; k < 4; ++k) f.segment<3>(3 * (body.first_mass + k)) += wts[k] * F;
-      f.segment<3>(3 * foot) -= F;
     }
   }
   if (friction) {
@@ -245,10 +171,7 @@ void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<doub
     // A free leg's push direction follows its foot (and a dummy hip mass).
     for (size_t i = 0; i < force_.size(); ++i) {
       if ((force_[i] == 0.0 && !fb) || !free_[i] || model_.foot[i] < 0) continue;
-      // (Ab/adduction forces also read the foot's normal force: its vertical momentum.)
-      for (int c = 0; c < (fb && settings_.powered_abduction ? 6 : 3); ++c) {
-        cols.push_back(6 * model_.foot[i] + c);
-      }
+      for (int c = 0; c < 3; ++c) cols.push_back(6 * model_.foot[i] + c);
       const pr::NodeRef& h = model_.hip_node[i];
       if (h.kind == pr::NodeRef::Kind::kMass) {
         for (int c = 0; c < 3; ++c) cols.push_back(6 * h.index + c);

@@ -61,16 +61,6 @@ class RobotSystem final : public ode::OdeSystem {
   /// free leg, R push otherwise).
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y) const;
 
-  /// Lateral setpoint of the stance ab/adduction law (settings lateral_kp, lateral_kd):
-  /// world y [m] and its rate [m/s], held constant over an integration segment.
-  void set_lateral_setpoint(double y, double vy) {
-    lateral_y_ = y;
-    lateral_vy_ = vy;
-  }
-  /// Each leg's ab/adduction force at y [N]: on the body at the foot's point along
-  /// the leg's ab/adduction direction (0 unless powered_abduction and in stance).
-  std::vector<double> abduction_forces(const ode::Vec& y) const;
-
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
   ExtraPower power(const ode::Vec& y) const;
   /// Friction force on each foot (world) [N]; zero vectors off the ground.
@@ -82,25 +72,20 @@ class RobotSystem final : public ode::OdeSystem {
   /// Adds the extra forces into f (3 per mass); returns false when there are none.
   bool extra_forces(const ode::Vec& y, ode::Vec& f) const;
   double normal_force(const ode::Vec& y, int foot) const;
-  /// Stance attitude feedback: fills fb_ with each leg's extra actuator force and
-  /// ab_ with its ab/adduction force (zero for legs off the ground); false when it
-  /// is off or fewer than three legs are grounded.
+  /// Stance attitude feedback: fills fb_ with each leg's extra actuator force
+  /// (zero for legs off the ground); false when it is off or no leg is grounded.
   bool feedback(const ode::Vec& y) const;
-  /// Unit world ab/adduction direction of grounded leg i: perpendicular to the leg
-  /// and to the body x axis.
-  Eigen::Vector3d abduction_direction(size_t i, const ode::Vec& y) const;
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
-  const pseudorigid::Mechanism& mech_;
+  const pseudorigid::Mechanism& mech_;  ///< the run's copy (leg rest lengths change)
   pseudorigid::MechanismSystem sys_;
-  double lateral_y_ = 0.0, lateral_vy_ = 0.0;
   std::vector<double> force_;
   std::vector<Eigen::Vector3d> push_;
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
   mutable ode::Vec extra_, fp_, fm_;
-  mutable std::vector<double> fb_, ab_;
+  mutable std::vector<double> fb_;
   mutable ode::Vec yp_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
 };

@@ -136,25 +136,8 @@ struct PseudoRigid {
   double stance_kd[2] = {0.0, 0.0};
   double stance_max_moment = 0.0;  ///< smooth limit of each moment [N m]; 0 = none
   bool stance_feedback() const {
-    return stance_kp[0] != 0.0 || stance_kp[1] != 0.0 || stance_kd[0] != 0.0 ||
-           stance_kd[1] != 0.0 || powered_abduction;
+    return stance_kp[0] != 0.0 || stance_kp[1] != 0.0 || stance_kd[0] != 0.0 || stance_kd[1] != 0.0;
   }
-  /// Powered hip ab/adduction in stance (running, with hip_rotation): a landed foot's
-  /// hip is free in pitch and torque-driven in ab/adduction (no slot): the hip motor
-  /// gives the foot a force across the leg, perpendicular to the leg and the body x
-  /// axis, reacted by the body at the foot's point (a pure hip torque). With three or
-  /// more feet down, the stance feedback then allocates leg and ab/adduction forces
-  /// (minimum norm, zero net push along the legs and fore-aft) for the roll/pitch
-  /// moment of stance_attitude, a yaw moment -yaw_kp psi - yaw_kd w_z and a world
-  /// lateral force -lateral_kp (y - y_s) - lateral_kd (v_y - v_s,y) towards the
-  /// setpoint; each ab/adduction force saturates smoothly at friction_share mu N of
-  /// its foot (N: the foot's normal force), so the grip holds.
-  bool powered_abduction = false;
-  double lateral_kp = 0.0;              ///< [N/m]
-  double lateral_kd = 0.0;              ///< [N s/m]
-  double yaw_kp = 0.0;                  ///< [N m/rad]
-  double yaw_kd = 0.0;                  ///< [N m s/rad]
-  double abduction_friction_share = 0.5;  ///< [-]
   /// Level feet (running, with hip_rotation): at the flight apex each leg's spring
   /// rest length is set (leg-length actuator, within +-25 % of nominal) so that all
   /// feet reach the ground together at the predicted touchdown attitude; the energy

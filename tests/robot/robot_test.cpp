@@ -224,8 +224,7 @@ TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[r
 // stance (stance_attitude). Measured: tilt <= 0.57 deg and lateral error <= 4.5 mm
 // over the last 5 s (0.2 -> 0.016 m by t = 5 s), slip <= 2.4 mm, energy balance
 // 4.2e-6 of the scale, 46 strides, ~33 s wall.
-TEST_CASE("robot runs after a moving setpoint in the full model (pr_running)",
-          "[robot][heavy]") {
+TEST_CASE("robot runs after a moving setpoint in the full model (pr_running)", "[robot][heavy]") {
   const scene::Scene s = load("pr_running.json");
   REQUIRE(s.simulation.duration >= 10.0);
   const robot::RobotRunResult r = robot::simulate(s);
@@ -278,8 +277,7 @@ TEST_CASE("stance attitude feedback removes the running robot's period-2 roll mo
 // t = 1.25 s). With them all four feet land together and the stance feedback levels
 // the body in the first stance (measured: roll -1.50 deg at the second touchdown,
 // first-stance lateral impulse +0.11 N s, roll within 0.6 deg from the third touchdown on).
-TEST_CASE("level feet let the running robot recover from a 10 deg roll landing",
-          "[robot][heavy]") {
+TEST_CASE("level feet let the running robot recover from a 10 deg roll landing", "[robot][heavy]") {
   const std::vector<std::string> shortened = {"/simulation/duration=1.5"};
   std::vector<std::string> off = shortened;
   off.push_back("/pseudo_rigid/level_feet=false");
