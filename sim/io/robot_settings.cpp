@@ -67,6 +67,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   } else {
     r.optional("stance_attitude");
   }
+  p.level_feet = r.boolean_or("level_feet", p.level_feet);
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -120,6 +121,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
              {{"kp", {p.stance_kp[0], p.stance_kp[1]}},
               {"kd", {p.stance_kd[0], p.stance_kd[1]}},
               {"max_moment", p.stance_max_moment}}},
+            {"level_feet", p.level_feet},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},
@@ -163,7 +165,7 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :
              {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
-              "friction", "slip_velocity", "hip_rotation", "stance_attitude"}) {
+              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       }

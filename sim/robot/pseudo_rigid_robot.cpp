@@ -77,6 +77,7 @@ RobotModel build_robot(const scene::Scene& s) {
       r.foot.push_back(-1);
       r.slide.push_back(-1);
       r.rest_length.push_back(0.0);
+      r.leg_spring.push_back(-1);
       continue;
     }
     // The foot touches the ground when the CoM of a level body is at legs.length.
@@ -99,6 +100,7 @@ RobotModel build_robot(const scene::Scene& s) {
     c.stiffness = p.leg_stiffness;
     c.rest_length = rest;
     c.damping = p.leg_damping;
+    r.leg_spring.push_back(static_cast<int>(m.connections.size()));
     m.connections.push_back(c);
     pr::Surface slide;
     slide.name = name + ".slide";

@@ -28,6 +28,7 @@ struct RobotModel {
   std::vector<int> foot;                       ///< foot mass index; -1 for force legs
   std::vector<int> slide;                      ///< line-surface index of the leg; -1 without
   std::vector<double> rest_length;             ///< leg spring rest length [m]
+  std::vector<int> leg_spring;                 ///< leg spring connection index; -1 without
   /// Leg direction hip -> foot, body frame (unit); initially straight down.
   std::vector<Eigen::Vector3d> direction;
   int ground = -1;  ///< ground plane surface index; -1 without feet

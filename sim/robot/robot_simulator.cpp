@@ -113,12 +113,17 @@ class BottomEvent final : public ode::EventFunction {
   const RobotModel& m_;
 };
 
-/// A foot crossing the ground plane z = 0: falling while its hip is locked (the
-/// foot lands: the hip is freed), rising while it is free (lift-off: locked again).
+/// A foot crossing the ground plane z = 0 falling while its hip is locked (the foot
+/// lands: the hip is freed), or rising through kFootLift above it while the hip is
+/// free (lift-off: locked again). The hysteresis keeps a foot grazing the ground
+/// (z ~ 0, v_z ~ 0) from landing and lifting off at the same instant forever.
+constexpr double kFootLift = 2e-4;  ///< [m]
 class FootEvent final : public ode::EventFunction {
  public:
   FootEvent(const RobotSystem& sys, size_t leg, int foot) : sys_(sys), leg_(leg), foot_(foot) {}
-  double value(double, const ode::Vec& y) const override { return y[6 * foot_ + 2]; }
+  double value(double, const ode::Vec& y) const override {
+    return y[6 * foot_ + 2] - (sys_.free(leg_) ? kFootLift : 0.0);
+  }
   int direction() const override { return sys_.free(leg_) ? 1 : -1; }
 
  private:
@@ -472,6 +477,15 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     // each leg along its total impulse; the foot moves with the leg (its energy
     // change is hip work).
     control::BodyState s = run.body_state(y);
+    // Body attitude after tf of free flight (constant angular velocity).
+    auto predicted_rotation = [&](double tf) {
+      const Vector3d w_world = msys.body_omega(model.body, y);
+      Matrix3d R_td = msys.frames(y)[model.body].rotation;
+      if (w_world.norm() * tf > 1e-12) {
+        R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
+      }
+      return R_td;
+    };
     const double dz = s.position.z() - l;
     if (dz > 0.0) {
       const double tf = std::sqrt(2.0 * dz / g);
@@ -494,14 +508,30 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
         const Vector3d d = free_leg_direction(P, v_mean, spring_stance, model.rest_length[0],
                                               prs.max_leg_angle, held_roll, v_takeoff);
-        const Vector3d w_world = msys.body_omega(model.body, y);
-        Matrix3d R_td = msys.frames(y)[model.body].rotation;
-        if (w_world.norm() * tf > 1e-12) {
-          R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
-        }
-        u.assign(legs, R_td.transpose() * d);
+        u.assign(legs, predicted_rotation(tf).transpose() * d);
       } else {
         u = leg_directions(pred, legs, prs.max_leg_angle);
+      }
+      // Level feet: each leg's rest length such that every foot reaches the ground
+      // together at the predicted touchdown attitude R_td (CoM at s.position).
+      std::vector<double> rest(legs);
+      for (size_t i = 0; i < legs; ++i) {
+        rest[i] = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
+      }
+      if (prs.level_feet && free_stance) {
+        const Matrix3d R_td = predicted_rotation(tf);
+        double z_mean = 0.0;
+        std::vector<double> hz(legs), dz_leg(legs);
+        for (size_t i = 0; i < legs; ++i) {
+          hz[i] = s.position.z() + (R_td * model.hip[i]).z();
+          dz_leg[i] = (R_td * u[i]).z();
+          z_mean += (hz[i] + model.rest_length[i] * dz_leg[i]) / static_cast<double>(legs);
+        }
+        for (size_t i = 0; i < legs; ++i) {
+          if (sys.free(i) || !(dz_leg[i] < -0.1)) continue;
+          rest[i] = std::clamp((z_mean - hz[i]) / dz_leg[i], 0.75 * model.rest_length[i],
+                               1.25 * model.rest_length[i]);
+        }
       }
       const double e_before = msys.energies(y).total();
       const pr::BodyFrame f = msys.frames(y)[model.body];
@@ -514,7 +544,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const Vector3d d_old = f.rotation * (-run.push[i]);
         const Vector3d d_new = f.rotation * u[i];
         const Vector3d xf = y.segment<3>(6 * foot);
-        const double ext = (xf - hip).dot(d_old);
+        // (the spring keeps its deflection when its rest length changes)
+        double& rest_now = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
+        const double ext = (xf - hip).dot(d_old) + rest[i] - rest_now;
+        rest_now = rest[i];
         const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
                               (f.com_velocity + w.cross(xf - f.com));
         const Vector3d xn = hip + ext * d_new;
@@ -741,7 +774,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const int foot = model.foot[i];
         const double z = y[6 * foot + 2];
         const bool land = i == first ? !sys.free(i) : !sys.free(i) && z <= 0.0;
-        const bool lift = i == first ? sys.free(i) : sys.free(i) && z > 0.0;
+        const bool lift = i == first ? sys.free(i) : sys.free(i) && z >= kFootLift;
         pr::Surface& slide = mech.surfaces[model.slide[i]];
         if (land) {
           // The hip turns freely about its pitch axis: the foot is held in the plane of

@@ -12,6 +12,7 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
                          const scene::PseudoRigid& settings)
     : model_(model),
       settings_(settings),
+      mech_(mechanism),
       sys_(mechanism),
       force_(model.hip.size(), 0.0),
       push_(model.hip.size(), Vector3d::UnitZ()),
@@ -91,7 +92,8 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     const size_t i = g[k];
     const double length =
         (sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i])).norm();
-    const double spring = settings_.leg_stiffness * std::max(0.0, model_.rest_length[i] - length);
+    const double rest = mech_.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    const double spring = settings_.leg_stiffness * std::max(0.0, rest - length);
     fb_[i] = std::max(f[static_cast<int>(k)], std::min(0.0, -spring - force_[i]));
   }
   return true;

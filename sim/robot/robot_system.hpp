@@ -78,6 +78,7 @@ class RobotSystem final : public ode::OdeSystem {
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
+  const pseudorigid::Mechanism& mech_;  ///< the run's copy (leg rest lengths change)
   pseudorigid::MechanismSystem sys_;
   std::vector<double> force_;
   std::vector<Eigen::Vector3d> push_;

@@ -138,6 +138,11 @@ struct PseudoRigid {
   bool stance_feedback() const {
     return stance_kp[0] != 0.0 || stance_kp[1] != 0.0 || stance_kd[0] != 0.0 || stance_kd[1] != 0.0;
   }
+  /// Level feet (running, with hip_rotation): at the flight apex each leg's spring
+  /// rest length is set (leg-length actuator, within +-25 % of nominal) so that all
+  /// feet reach the ground together at the predicted touchdown attitude; the energy
+  /// change is booked as hip work.
+  bool level_feet = false;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).

@@ -327,6 +327,19 @@ TEST_CASE("stance attitude feedback settings parse and round-trip", "[io][scene]
   CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
 }
 
+TEST_CASE("level feet setting parses, round-trips and names its pointer", "[io][scene]") {
+  json doc = shipped("pr_running.json");
+  CHECK(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // on in the shipped scene
+  doc["pseudo_rigid"]["level_feet"] = false;
+  const scene::Scene s = io::parse_scene(doc, "pr.json");
+  CHECK_FALSE(s.pseudo_rigid.level_feet);
+  CHECK(io::scene_to_json(s)["pseudo_rigid"]["level_feet"] == false);
+  doc["pseudo_rigid"].erase("level_feet");
+  CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // default off
+  doc["pseudo_rigid"]["level_feet"] = 1;
+  check_error(parse_error(doc), "/pseudo_rigid/level_feet", "true or false", "number 1");
+}
+
 TEST_CASE("values of the wrong type are rejected", "[io][scene][errors]") {
   json doc = shipped("case1_body_only.json");
   SECTION("string for a number") {
