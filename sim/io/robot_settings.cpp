@@ -168,6 +168,8 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
               "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
+      } else if (!s.pseudo_rigid.hip_rotation) {
+        out.push_back("/pseudo_rigid/level_feet");  // levels the feet when placing the legs
       }
       break;
   }

@@ -176,6 +176,13 @@ TEST_CASE("robot scene: pseudo_rigid settings load, round-trip and are listed as
   CHECK(std::find(unused.begin(), unused.end(), "/pseudo_rigid") != unused.end());
   const auto pr_unused = io::unused_settings(s);
   CHECK(std::find(pr_unused.begin(), pr_unused.end(), "/pseudo_rigid") == pr_unused.end());
+  // Level feet act where the hips place the legs (hip_rotation): listed as unused without.
+  CHECK(!s.pseudo_rigid.hip_rotation);
+  CHECK(std::find(pr_unused.begin(), pr_unused.end(), "/pseudo_rigid/level_feet") !=
+        pr_unused.end());
+  const auto run_unused = io::unused_settings(load("pr_running.json"));
+  CHECK(std::find(run_unused.begin(), run_unused.end(), "/pseudo_rigid/level_feet") ==
+        run_unused.end());
   // "auto" stiffness.
   const scene::Scene a = load("case6_pr_drop.json", {"/pseudo_rigid/internal_stiffness=\"auto\""});
   CHECK(a.pseudo_rigid.internal_auto);
