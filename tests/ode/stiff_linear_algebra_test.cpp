@@ -118,32 +118,20 @@ TEST_CASE("Schur-complement LU falls back to the full LU when the structure brea
   std::mt19937 rng(11);
   Eigen::MatrixXd J = mechanical_jacobian(4, rng);
   const Vec b = random_vec(24, rng);
+  // Factorises with sys's structure and checks the full LU was used and solves E x = b.
+  auto check_full_lu = [&](const MechanicalStub& sys, bool dense) {
+    ShiftedLu<double> lu(dense);
+    lu.use_structure(sys);
+    REQUIRE(lu.compute(J.sparseView(), 1e3));
+    CHECK_FALSE(lu.used_schur());
+    Vec x = b;
+    lu.solve(x);
+    CHECK(residual(J, 1e3, x, b) < 1e-15);
+  };
   SECTION("a position rate that depends on a position") {
     J(0, 6) = 2.0;
-    const MechanicalStub sys(4);
-    ShiftedLu<double> lu(true);
-    lu.use_structure(sys);
-    REQUIRE(lu.compute(J.sparseView(), 1e3));
-    CHECK_FALSE(lu.used_schur());
-    Vec x = b;
-    lu.solve(x);
-    CHECK(residual(J, 1e3, x, b) < 1e-15);
+    check_full_lu(MechanicalStub(4), true);
   }
-  SECTION("a system without a mechanical split") {
-    const MechanicalStub sys(4, false);
-    ShiftedLu<double> lu(true);
-    lu.use_structure(sys);
-    REQUIRE(lu.compute(J.sparseView(), 1e3));
-    CHECK_FALSE(lu.used_schur());
-  }
-  SECTION("sparse factorisations keep SparseLU") {
-    const MechanicalStub sys(4);
-    ShiftedLu<double> lu(false);
-    lu.use_structure(sys);
-    REQUIRE(lu.compute(J.sparseView(), 1e3));
-    CHECK_FALSE(lu.used_schur());
-    Vec x = b;
-    lu.solve(x);
-    CHECK(residual(J, 1e3, x, b) < 1e-15);
-  }
+  SECTION("a system without a mechanical split") { check_full_lu(MechanicalStub(4, false), true); }
+  SECTION("sparse factorisations keep SparseLU") { check_full_lu(MechanicalStub(4), false); }
 }
