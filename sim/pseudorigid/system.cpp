@@ -16,6 +16,9 @@ Vector3d seg(const ode::Vec& y, int i) { return y.segment<3>(i); }
 
 MechanismSystem::MechanismSystem(const Mechanism& m)
     : m_(m),
+      fit_x_(m.bodies.size()),
+      fit_frame_(m.bodies.size()),
+      fit_valid_(m.bodies.size(), false),
       frames_(m.bodies.size()),
       dframes_(m.bodies.size()),
       force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))) {
@@ -35,13 +38,23 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
       (m.simulation.ghost_transfer == GhostTransfer::kMinNorm && !m.ghost_points.empty());
 }
 
+const BodyFrame& MechanismSystem::fitted_frame(int b, const ode::Vec& y) const {
+  const Body& body = m_.bodies[b];
+  std::array<Vector3d, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
+  // Exact comparison: the same positions give the same fit, bit for bit.
+  if (!fit_valid_[b] || x != fit_x_[b]) {
+    fit_frame_[b] = fit_attitude(x, body.local);
+    fit_x_[b] = x;
+    fit_valid_[b] = true;
+  }
+  return fit_frame_[b];
+}
+
 void MechanismSystem::update_frames(const ode::Vec& y, bool derivatives) const {
   for (size_t b = 0; b < m_.bodies.size(); ++b) {
-    const Body& body = m_.bodies[b];
-    std::array<Vector3d, 4> x;
-    for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
-    frames_[b] = fit_attitude(x, body.local);
-    if (derivatives) dframes_[b] = attitude_derivative(frames_[b], body.local);
+    frames_[b] = fitted_frame(static_cast<int>(b), y);
+    if (derivatives) dframes_[b] = attitude_derivative(frames_[b], m_.bodies[b].local);
   }
 }
 
@@ -91,10 +104,7 @@ Vector3d MechanismSystem::node_velocity(const NodeRef& n, const ode::Vec& y) con
 
 Vector3d MechanismSystem::reference_position(int i, const ode::Vec& y) const {
   const ReferencePoint& r = m_.reference_points[i];
-  const Body& body = m_.bodies[r.body];
-  std::array<Vector3d, 4> x;
-  for (int k = 0; k < 4; ++k) x[k] = seg(y, 6 * (body.first_mass + k));
-  const BodyFrame f = fit_attitude(x, body.local);
+  const BodyFrame& f = fitted_frame(r.body, y);
   return f.com + f.rotation * r.local;
 }
 
@@ -196,9 +206,7 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   if (known_frame != nullptr) {
     frame = *known_frame;
   } else {
-    std::array<Vector3d, 4> x;
-    for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
-    frame = fit_attitude(x, body.local);
+    frame = fitted_frame(s.body, y);
   }
   const Matrix3d& rot = frame.rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};

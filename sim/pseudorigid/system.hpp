@@ -113,8 +113,17 @@ class MechanismSystem final : public ode::OdeSystem {
   /// surfaces attached to body b, by central differences.
   void attached_surfaces_jacobian(int b, const ode::Vec& y) const;
 
+  /// fit_attitude of body b's masses at y, memoised: a fit is a pure function of the
+  /// four positions, and one RHS of a robot asks for the same frame several times
+  /// (feedback, leg directions, angular velocity). Valid until the next call for b.
+  const BodyFrame& fitted_frame(int b, const ode::Vec& y) const;
+
   const Mechanism& m_;
   double segment_time_ = 0.0;
+  /// The positions of each body's masses at its last fit, and that fit (fitted_frame).
+  mutable std::vector<std::array<Eigen::Vector3d, 4>> fit_x_;
+  mutable std::vector<BodyFrame> fit_frame_;
+  mutable std::vector<bool> fit_valid_;
   mutable std::vector<BodyFrame> frames_;
   mutable std::vector<std::array<Eigen::Matrix3d, 4>> dframes_;
   mutable ode::Vec force_;
