@@ -477,18 +477,16 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     // each leg along its total impulse; the foot moves with the leg (its energy
     // change is hip work).
     control::BodyState s = run.body_state(y);
-    // Body attitude after tf of free flight (constant angular velocity).
-    auto predicted_rotation = [&](double tf) {
+    const double dz = s.position.z() - l;
+    if (dz > 0.0) {
+      const double tf = std::sqrt(2.0 * dz / g);
+      // Body attitude at the predicted touchdown, after tf of free flight (constant
+      // angular velocity).
       const Vector3d w_world = msys.body_omega(model.body, y);
       Matrix3d R_td = msys.frames(y)[model.body].rotation;
       if (w_world.norm() * tf > 1e-12) {
         R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
       }
-      return R_td;
-    };
-    const double dz = s.position.z() - l;
-    if (dz > 0.0) {
-      const double tf = std::sqrt(2.0 * dz / g);
       s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
       s.velocity.z() -= g * tf;
       const control::StancePlan pred =
@@ -508,7 +506,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
         const Vector3d d = free_leg_direction(P, v_mean, spring_stance, model.rest_length[0],
                                               prs.max_leg_angle, held_roll, v_takeoff);
-        u.assign(legs, predicted_rotation(tf).transpose() * d);
+        u.assign(legs, R_td.transpose() * d);
       } else {
         u = leg_directions(pred, legs, prs.max_leg_angle);
       }
@@ -519,7 +517,6 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         rest[i] = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
       }
       if (prs.level_feet && free_stance) {
-        const Matrix3d R_td = predicted_rotation(tf);
         double z_mean = 0.0;
         std::vector<double> hz(legs), dz_leg(legs);
         for (size_t i = 0; i < legs; ++i) {

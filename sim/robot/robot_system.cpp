@@ -67,9 +67,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   }
   // Minimum-norm leg forces giving that moment with no net force along the legs'
   // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).
-  // With fewer than three legs down the moment may need a net push (or pull).
-  const int rows = g.size() >= 3 ? 3 : 2;
-  Eigen::MatrixXd A(rows, static_cast<int>(g.size()));
+  Eigen::MatrixXd A(3, static_cast<int>(g.size()));
   std::vector<Vector3d> u(g.size());
   Vector3d n = Vector3d::Zero();
   for (size_t k = 0; k < g.size(); ++k) {
@@ -82,9 +80,9 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     const Vector3d m = R.transpose() * r.cross(u[k]);
     A(0, static_cast<int>(k)) = m.x();
     A(1, static_cast<int>(k)) = m.y();
-    if (rows == 3) A(2, static_cast<int>(k)) = u[k].dot(n);
+    A(2, static_cast<int>(k)) = u[k].dot(n);
   }
-  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b.head(rows));
+  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b);
   // A leg can only pull its foot as far as its spring pushes it: the total actuator
   // force stays above minus the spring force (or the set force, if lower), so a foot
   // just landed is not lifted off again.
