@@ -46,6 +46,29 @@ class OdeSystem {
   /// Writes G(p) into the position entries of dydt; leaves its momentum entries unchanged.
   /// Must be much cheaper than rhs() (the stepper calls it twice per step).
   virtual void position_rate(const Vec& /*y*/, Vec& /*dydt*/) const {}
+
+  /// Optional dissipation split for the symplectic stepper (needs the mechanical split): the
+  /// velocity-dependent dissipative forces (dampers, friction, drag) leave the kicks and act
+  /// as velocity-only updates at fixed positions, each solved implicitly, so stiff damping
+  /// and regularised friction cost no stability, and the energy they remove is known exactly.
+  virtual bool has_dissipation_split() const { return false; }
+  /// dy/dt without the dissipative forces dissipate() applies (same layout as rhs()).
+  virtual void conservative_rhs(double t, const Vec& y, Vec& dydt) const { rhs(t, y, dydt); }
+  /// Applies the dissipative forces over a time h [s] to the momenta of y (positions fixed)
+  /// and returns the energy to book as dissipated [J]: -sum dP . (v_ref + dP / 2 m) over the
+  /// momentum changes dP, with v_ref the velocities of y_ref. The stepper passes as y_ref the
+  /// state before the preceding kick for the first half of a step, and y itself (before the
+  /// update) for the second: then E - T + booked dissipation is exactly constant for
+  /// quadratic potentials, T = sum h^2 |F_j|^2 / 8 m_j the bounded Verlet term.
+  virtual double dissipate(double /*t*/, double /*h*/, const Vec& /*y_ref*/, Vec& /*y*/) const {
+    return 0.0;
+  }
+  /// With the dissipation split, after each step from y0 to y1: a potential that is only
+  /// piecewise quadratic (one-sided contact) breaks the exact balance above in a step that
+  /// crosses its kink (a foot landing at 1.7 m/s on a 1e5 N/m ground lost up to 0.03 J per
+  /// touchdown at h = 5e-4 s); the system may correct the momenta of y1 so that the step's
+  /// energy change is the exact one.
+  virtual void correct_step(const Vec& /*y0*/, Vec& /*y1*/) const {}
 };
 
 /// A scalar event function g(t, y); an event fires when g crosses zero in the

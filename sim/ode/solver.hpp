@@ -102,6 +102,12 @@ class Stepper {
   virtual const SolverCounters& counters() const = 0;
   /// Mutable counters (integrate() counts located events here).
   virtual SolverCounters& mutable_counters() = 0;
+  /// True when the stepper applies the system's dissipation split (OdeSystem::dissipate):
+  /// the energy it removed is then booked_dissipation(), not an integral of a power.
+  virtual bool books_dissipation() const { return false; }
+  /// Energy the dissipative updates removed since the stepper was made [J] (not reset by
+  /// reset()); 0 when books_dissipation() is false.
+  virtual double booked_dissipation() const { return 0.0; }
 };
 
 /// Creates the stepper of options.method for systems of dimension n.

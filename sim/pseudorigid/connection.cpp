@@ -5,14 +5,17 @@
 namespace pronk::pseudorigid {
 
 ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
-                                 const Eigen::Vector3d& v, double epsilon) {
+                                 const Eigen::Vector3d& v, double epsilon, bool derivatives) {
   ConnectionForce out;
   const Eigen::Matrix3d eye = Eigen::Matrix3d::Identity();
   const double l = d.norm();
   const bool has_dir = l >= epsilon;
   const Eigen::Vector3d e = has_dir ? Eigen::Vector3d(d / l) : Eigen::Vector3d::Zero();
-  const Eigen::Matrix3d eet = e * e.transpose();
-  const Eigen::Matrix3d perp = eye - eet;
+  Eigen::Matrix3d eet = Eigen::Matrix3d::Zero(), perp = Eigen::Matrix3d::Zero();
+  if (derivatives) {
+    eet = e * e.transpose();
+    perp = eye - eet;
+  }
 
   // Spring (and the actuator's proportional part).
   Eigen::Vector3d spring = Eigen::Vector3d::Zero();
@@ -20,10 +23,10 @@ ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
   if (c.stiffness != 0.0) {
     if (c.rest_length == 0.0) {
       spring = -c.stiffness * d;
-      spring_dx = -c.stiffness * eye;
+      if (derivatives) spring_dx = -c.stiffness * eye;
     } else if (has_dir) {
       spring = -c.stiffness * (l - c.rest_length) * e;
-      spring_dx = -c.stiffness * (eet + ((l - c.rest_length) / l) * perp);
+      if (derivatives) spring_dx = -c.stiffness * (eet + ((l - c.rest_length) / l) * perp);
     } else {
       out.zero_length = true;
     }
@@ -35,8 +38,10 @@ ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
     if (has_dir) {
       const double ev = e.dot(v);
       damper = -c.damping * ev * e;
-      damper_dv = -c.damping * eet;
-      damper_dx = -(c.damping / l) * (ev * perp + e * (perp * v).transpose());
+      if (derivatives) {
+        damper_dv = -c.damping * eet;
+        damper_dx = -(c.damping / l) * (ev * perp + e * (perp * v).transpose());
+      }
     } else {
       out.zero_length = true;
     }

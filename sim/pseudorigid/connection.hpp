@@ -43,9 +43,10 @@ struct ConnectionForce {
   bool zero_length = false;                               ///< the zero-length rule dropped a term
 };
 
-/// Evaluates the connection law at relative position d [m] and velocity v [m/s].
+/// Evaluates the connection law at relative position d [m] and velocity v [m/s];
+/// without `derivatives` d_dx and d_dv are left unset (not exact; the RHS does not need them).
 ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
-                                 const Eigen::Vector3d& v, double epsilon);
+                                 const Eigen::Vector3d& v, double epsilon, bool derivatives = true);
 
 /// Stored energy of the spring [J] (0 for actuators).
 double connection_energy(const Connection& c, const Eigen::Vector3d& d);

@@ -25,6 +25,7 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
   for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
   bool attached = false;
   for (const Surface& s : m.surfaces) attached = attached || s.body >= 0;
+  has_attached_surfaces_ = attached;
   for (const Connection& c : m.connections) {
     has_power_flows_ = has_power_flows_ || c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0 ||
                        c.kind == ConnectionClass::kActuator;
@@ -33,6 +34,24 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
     has_power_flows_ = has_power_flows_ || s.damping > 0.0 || s.friction > 0.0;
   }
   has_power_flows_ = has_power_flows_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
+  for (const Connection& c : m.connections) {
+    has_actuator_work_ = has_actuator_work_ || c.kind == ConnectionClass::kActuator;
+  }
+  has_actuator_work_ = has_actuator_work_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
+  if (m.simulation.ghost_transfer == GhostTransfer::kMinNorm) {
+    auto ghost = [](const NodeRef& n) { return n.kind == NodeRef::Kind::kGhost; };
+    for (const Connection& c : m.connections) {
+      const bool dissipative = c.kind != ConnectionClass::kActuator &&
+                               (c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0);
+      if (dissipative && (ghost(c.a) || ghost(c.b))) dissipation_split_ = false;
+    }
+    for (const Surface& s : m.surfaces) {
+      if (s.body >= 0 || (s.damping == 0.0 && s.friction == 0.0)) continue;
+      for (const NodeRef& n : s.nodes) {
+        if (ghost(n)) dissipation_split_ = false;
+      }
+    }
+  }
   rhs_needs_frames_ =
       attached || !m.body_forces.empty() || !m.impulse_actuators.empty() ||
       (m.simulation.ghost_transfer == GhostTransfer::kMinNorm && !m.ghost_points.empty());
@@ -165,7 +184,7 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
     e.dir = s.direction;
   }
   e.r = node_position(n, y) - p;
-  e.v = node_velocity(n, y) - vp;
+  e.v = conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - vp);
   switch (s.type) {
     case SurfaceType::kPlane: {
       const double h = e.dir.dot(e.r);
@@ -212,7 +231,8 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
   const Vector3d dir = rot * s.direction;
   const Vector3d r = node_position(n, y) - node_position(g, y);
-  const Vector3d v = node_velocity(n, y) - node_velocity(g, y);
+  const Vector3d v =
+      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
   Matrix3d proj = Matrix3d::Identity();
   Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the direction [N m]
   switch (s.type) {
@@ -338,14 +358,18 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
 }
 
 void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
-  if (rhs_needs_frames_) update_frames(y, false);
+  // Body-attached surfaces need each body's attitude derivative: once per body here, not
+  // once per constrained node.
+  if (rhs_needs_frames_) update_frames(y, has_attached_surfaces_);
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
   bool zero_length = false;
   for (const Connection& c : m_.connections) {
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
-    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    const Vector3d v = conservative_ && c.kind != ConnectionClass::kActuator
+                           ? Vector3d::Zero()
+                           : Vector3d(node_velocity(c.a, y) - node_velocity(c.b, y));
+    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon, false);
     zero_length = zero_length || cf.zero_length;
     apply(c.a, cf.force);
     apply(c.b, -cf.force);
@@ -353,14 +377,13 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   if (zero_length) ++zero_length_;
   for (const Surface& s : m_.surfaces) {
     for (const NodeRef& n : s.nodes) {
-      const SurfaceEval e = eval_surface(s, n, y);
-      if (!e.active) continue;
       if (s.body < 0) {
-        apply(n, e.force);
+        const SurfaceEval e = eval_surface(s, n, y);
+        if (e.active) apply(n, e.force);
         continue;
       }
-      attached_.clear();
-      attached_surface_forces(s, n, y, attached_, &frames_[s.body]);
+      attached_.clear();  // (an inactive plane adds nothing)
+      attached_surface_forces(s, n, y, attached_, &frames_[s.body], &dframes_[s.body]);
       for (const auto& [mass, f] : attached_) force_.segment<3>(3 * mass) += f;
     }
   }
@@ -376,6 +399,183 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   for (int j = 0; j < nm; ++j) {
     dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
     dydt.segment<3>(6 * j + 3) = force_.segment<3>(3 * j);
+  }
+}
+
+void MechanismSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
+  conservative_ = true;
+  rhs(t, y, dydt);
+  conservative_ = false;
+}
+
+double MechanismSystem::inverse_mass(const NodeRef& n) const {
+  switch (n.kind) {
+    case NodeRef::Kind::kMass:
+      return inv_mass_[n.index];
+    case NodeRef::Kind::kGhost: {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      const int f = m_.bodies[g.body].first_mass;
+      double w = 0.0;
+      for (int i = 0; i < 4; ++i) w += g.weights[i] * g.weights[i] * inv_mass_[f + i];
+      return w;
+    }
+    case NodeRef::Kind::kAnchor:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+void MechanismSystem::add_impulse(const NodeRef& n, const Vector3d& j, ode::Vec& y) const {
+  if (n.kind == NodeRef::Kind::kMass) {
+    y.segment<3>(6 * n.index + 3) += j;
+  } else if (n.kind == NodeRef::Kind::kGhost) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    const int f = m_.bodies[g.body].first_mass;
+    for (int i = 0; i < 4; ++i) y.segment<3>(6 * (f + i) + 3) += g.weights[i] * j;
+  }
+}
+
+namespace {
+
+/// The speed s >= 0 with s + a s / sqrt(s^2 + vs^2) = u (u >= 0, a >= 0, vs > 0): backward
+/// Euler of regularised Coulomb friction. The left side g(s) + u is increasing and concave,
+/// so Newton from a point left of the root climbs monotonically to it. Start: the larger of
+/// the viscous solution u / (1 + a / vs) and the sliding one u - a, both left of the root
+/// (s / sqrt(s^2 + vs^2) lies below s / vs and below 1) and each exact in its regime.
+double friction_speed(double u, double a, double vs) {
+  double s = std::max(u / (1.0 + a / vs), u - a);
+  for (int it = 0; it < 100; ++it) {
+    const double r = std::sqrt(s * s + vs * vs);
+    const double g = s + a * s / r - u;
+    if (g >= -1e-15 * u) break;
+    const double next = s - g / (1.0 + a * vs * vs / (r * r * r));
+    if (!(next > s)) break;  // converged to round-off
+    s = next;
+  }
+  return std::min(s, u);
+}
+
+}  // namespace
+
+double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
+                                  ode::Vec& y) const {
+  if (!has_power_flows_) return 0.0;
+  dissipate_before_ = y;
+  const ode::Vec& y_before = dissipate_before_;
+  for (const Connection& c : m_.connections) {
+    if (c.kind == ConnectionClass::kActuator) continue;
+    if (c.damping == 0.0 && c.friction == 0.0 && c.drag == 0.0) continue;
+    const double w = inverse_mass(c.a) + inverse_mass(c.b);
+    if (!(w > 0.0)) continue;
+    // Each term: the relative velocity u changes by w J under the impulse J on a (-J on b).
+    auto push = [&](const Vector3d& j) {
+      add_impulse(c.a, j, y);
+      add_impulse(c.b, -j, y);
+    };
+    if (c.damping > 0.0) {
+      const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+      const double l = d.norm();
+      if (l >= m_.simulation.zero_length_epsilon) {
+        const Vector3d e = d / l;
+        const double u = e.dot(node_velocity(c.a, y) - node_velocity(c.b, y));
+        push((-h * c.damping * u / (1.0 + h * c.damping * w)) * e);
+      }
+    }
+    if (c.friction > 0.0) {
+      const Vector3d u = node_velocity(c.a, y) - node_velocity(c.b, y);
+      push((-h * c.friction / (1.0 + h * c.friction * w)) * u);
+    }
+    if (c.drag > 0.0) {
+      // |u_new| + h q w |u_new|^2 = |u|.
+      const Vector3d u = node_velocity(c.a, y) - node_velocity(c.b, y);
+      const double s = u.norm();
+      const double a = h * c.drag * w;
+      if (s > 0.0 && a > 0.0) {
+        const double sn = 2.0 * s / (1.0 + std::sqrt(1.0 + 4.0 * a * s));
+        push(((sn - s) / (w * s)) * u);
+      }
+    }
+  }
+  for (const Surface& s : m_.surfaces) {
+    if (s.damping == 0.0 && s.friction == 0.0) continue;
+    Matrix3d rot = Matrix3d::Identity();
+    NodeRef g{NodeRef::Kind::kAnchor, -1};
+    double wg = 0.0;
+    if (s.body >= 0) {
+      rot = fitted_frame(s.body, y).rotation;
+      g = NodeRef{NodeRef::Kind::kGhost, s.ghost};
+      wg = inverse_mass(g);
+    }
+    const Vector3d dir = rot * s.direction;
+    const Vector3d p = s.body >= 0 ? node_position(g, y) : s.point;
+    for (const NodeRef& n : s.nodes) {
+      const Vector3d r = node_position(n, y) - p;
+      const bool plane = s.type == SurfaceType::kPlane;
+      const double height = dir.dot(r);
+      if (plane && height >= 0.0 && !s.bilateral) continue;
+      const double w = inverse_mass(n) + wg;
+      if (!(w > 0.0)) continue;
+      Vector3d u = node_velocity(n, y);
+      if (s.body >= 0) u -= node_velocity(g, y);
+      // The damper acts on the constrained components: the normal one of a plane, the two
+      // across a line, all three at a point.
+      Vector3d j = Vector3d::Zero();
+      const double damp = h * s.damping / (1.0 + h * s.damping * w);
+      double un = dir.dot(u);
+      if (plane) {
+        j = (-damp * un) * dir;
+        un -= damp * w * un;
+      } else if (s.type == SurfaceType::kLine) {
+        j = -damp * (u - un * dir);
+      } else {
+        j = -damp * u;
+      }
+      if (s.friction > 0.0) {
+        // Normal force with the damped normal velocity, then backward Euler of the
+        // regularised Coulomb law along the tangential velocity (its direction is kept).
+        const double normal = std::max(0.0, -s.stiffness * height - s.damping * un);
+        const Vector3d ut = u - dir * dir.dot(u);
+        const double speed = ut.norm();
+        if (normal > 0.0 && speed > 0.0) {
+          const double sn = friction_speed(speed, h * s.friction * normal * w, s.slip_velocity);
+          j += ((sn - speed) / (w * speed)) * ut;
+        }
+      }
+      add_impulse(n, j, y);
+      if (s.body >= 0) add_impulse(g, -j, y);
+    }
+  }
+  // The energy balance of the step: with the momentum changes dP_j of the masses,
+  // -sum dP_j . (v_ref_j + dP_j / 2 m_j) (see the header).
+  double dissipated = 0.0;
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) {
+    const Vector3d dp = seg(y, 6 * j + 3) - seg(y_before, 6 * j + 3);
+    dissipated -= dp.dot(seg(y_ref, 6 * j + 3) + 0.5 * dp) * inv_mass_[j];
+  }
+  return dissipated;
+}
+
+void MechanismSystem::correct_step(const ode::Vec& y0, ode::Vec& y1) const {
+  for (const Surface& s : m_.surfaces) {
+    if (s.body >= 0 || s.type != SurfaceType::kPlane || s.bilateral) continue;
+    for (const NodeRef& n : s.nodes) {
+      const double z0 = s.direction.dot(node_position(n, y0) - s.point);
+      const double z1 = s.direction.dot(node_position(n, y1) - s.point);
+      if ((z0 < 0.0) == (z1 < 0.0)) continue;  // no kink crossed: exact already
+      const double w = inverse_mass(n);
+      if (!(w > 0.0)) continue;
+      // Energy the kicks' trapezoidal contact work gave beyond the exact one [J].
+      const double f0 = s.stiffness * std::max(0.0, -z0), f1 = s.stiffness * std::max(0.0, -z1);
+      const double u0 = 0.5 * s.stiffness * std::min(0.0, z0) * std::min(0.0, z0);
+      const double u1 = 0.5 * s.stiffness * std::min(0.0, z1) * std::min(0.0, z1);
+      const double excess = 0.5 * (f0 + f1) * (z1 - z0) + (u1 - u0);
+      // Impulse J along the normal with J u + w J^2 / 2 = -excess (u: normal velocity).
+      const double u = s.direction.dot(node_velocity(n, y1));
+      const double disc = u * u - 2.0 * w * excess;
+      const double j = disc >= 0.0 ? (-u + std::copysign(std::sqrt(disc), u)) / w : -u / w;
+      add_impulse(n, j * s.direction, y1);
+    }
   }
 }
 
@@ -575,9 +775,11 @@ double MechanismSystem::error_norm(const ode::Vec& err, const ode::Vec& y0, cons
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
 }
 
-Energies MechanismSystem::energies(const ode::Vec& y) const {
+void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonitors* monitors,
+                              std::vector<double>* surface_max) const {
   if (rhs_needs_frames_) update_frames(y, false);
   Energies e;
+  StateMonitors mon;
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) {
     e.kinetic += 0.5 * seg(y, 6 * j + 3).squaredNorm() * inv_mass_[j];
@@ -585,10 +787,15 @@ Energies MechanismSystem::energies(const ode::Vec& y) const {
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
   for (const Connection& c : m_.connections) {
-    const double u = connection_energy(c, node_position(c.a, y) - node_position(c.b, y));
+    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    const double u = connection_energy(c, d);
     switch (c.kind) {
       case ConnectionClass::kInternal:
         e.internal += u;
+        if (c.rest_length > 0.0) {
+          mon.max_strain =
+              std::max(mon.max_strain, std::abs(d.norm() - c.rest_length) / c.rest_length);
+        }
         break;
       case ConnectionClass::kLeg:
         e.leg += u;
@@ -598,12 +805,23 @@ Energies MechanismSystem::energies(const ode::Vec& y) const {
         break;
     }
   }
-  for (const Surface& s : m_.surfaces) {
+  for (size_t i = 0; i < m_.surfaces.size(); ++i) {
+    const Surface& s = m_.surfaces[i];
     for (const NodeRef& n : s.nodes) {
       const SurfaceEval ev = eval_surface(s, n, y);
-      if (ev.active) e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
+      if (!ev.active) continue;
+      e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
+      mon.max_penetration = std::max(mon.max_penetration, ev.penetration);
+      if (surface_max != nullptr) (*surface_max)[i] = std::max((*surface_max)[i], ev.force.norm());
     }
   }
+  if (energies != nullptr) *energies = e;
+  if (monitors != nullptr) *monitors = mon;
+}
+
+Energies MechanismSystem::energies(const ode::Vec& y) const {
+  Energies e;
+  observe(y, &e, nullptr, nullptr);
   return e;
 }
 
@@ -614,7 +832,7 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
   for (const Connection& c : m_.connections) {
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
     const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
-    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon, false);
     p.dissipated -= cf.dissipative.dot(v);
     if (c.kind == ConnectionClass::kActuator) p.actuator += cf.force.dot(v);
   }
@@ -639,33 +857,14 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
 }
 
 StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
-  if (rhs_needs_frames_) update_frames(y, false);
   StateMonitors mon;
-  for (const Connection& c : m_.connections) {
-    if (c.kind != ConnectionClass::kInternal || c.rest_length <= 0.0) continue;
-    const double l = (node_position(c.a, y) - node_position(c.b, y)).norm();
-    mon.max_strain = std::max(mon.max_strain, std::abs(l - c.rest_length) / c.rest_length);
-  }
-  for (const Surface& s : m_.surfaces) {
-    for (const NodeRef& n : s.nodes) {
-      const SurfaceEval e = eval_surface(s, n, y);
-      if (e.active) mon.max_penetration = std::max(mon.max_penetration, e.penetration);
-    }
-  }
+  observe(y, nullptr, &mon, nullptr);
   return mon;
 }
 
 std::vector<double> MechanismSystem::surface_forces(const ode::Vec& y) const {
-  if (rhs_needs_frames_) update_frames(y, false);
-  std::vector<double> out;
-  for (const Surface& s : m_.surfaces) {
-    double f = 0.0;
-    for (const NodeRef& n : s.nodes) {
-      const SurfaceEval e = eval_surface(s, n, y);
-      if (e.active) f = std::max(f, e.force.norm());
-    }
-    out.push_back(f);
-  }
+  std::vector<double> out(m_.surfaces.size(), 0.0);
+  observe(y, nullptr, nullptr, &out);
   return out;
 }
 

@@ -43,6 +43,29 @@ class MechanismSystem final : public ode::OdeSystem {
   void momentum_mask(ode::Vec& mask) const override;
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
 
+  /// Dissipation split (method verlet): the dampers, friction and drag of connections (not
+  /// actuators) and surfaces leave the kicks. Offered unless a dissipative element acts on a
+  /// ghost point under the min_norm transfer (its impulse has no scalar effective mass).
+  bool has_dissipation_split() const override { return dissipation_split_; }
+  /// rhs() without those forces (friction's normal force then has no damping term either).
+  void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
+  /// Each dissipative element in model order as an implicit (backward Euler) impulse over
+  /// h [s] on its two nodes' momenta at fixed positions: linear dampers and friction in
+  /// closed form, drag and regularised Coulomb friction by a monotone scalar solve. Every
+  /// update conserves momentum and removes energy whatever h. Returns the energy to book
+  /// as dissipated [J]: -sum_j dP_j . (v_ref_j + dP_j / 2 m_j) over the masses' momentum
+  /// changes dP_j, with v_ref the velocities of y_ref (see OdeSystem::dissipate).
+  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override;
+  /// Grounded one-sided planes: a node that entered or left the contact during the step
+  /// gets an impulse along the normal that makes the step's kinetic energy change match the
+  /// exact potential change of its contact spring, 1/2 k (min(0, z1)^2 - min(0, z0)^2) for
+  /// gaps z0, z1, instead of the trapezoidal work of the Verlet kicks (the discrete-gradient
+  /// contact force of energy-conserving contact schemes). Of the two roots the smaller
+  /// impulse; when the node's normal motion cannot supply the energy, it stops it.
+  void correct_step(const ode::Vec& y0, ode::Vec& y1) const override;
+  /// True when actuators or applied forces do work (power().actuator is not always zero).
+  bool has_actuator_work() const { return has_actuator_work_; }
+
   /// Time-windowed forces (body forces, impulse actuators) are on or off for a
   /// whole integration segment: the simulator stops at every switch time and
   /// calls this with a time inside the next segment [s].
@@ -63,6 +86,11 @@ class MechanismSystem final : public ode::OdeSystem {
   StateMonitors monitors(const ode::Vec& y) const;
   /// Largest contact force magnitude of each surface at y [N].
   std::vector<double> surface_forces(const ode::Vec& y) const;
+  /// energies(), monitors() and surface_forces() in one pass (each surface evaluated once);
+  /// null outputs are skipped; surface_max (sized to the surfaces) is raised to the forces
+  /// at y, not overwritten.
+  void observe(const ode::Vec& y, Energies* energies, StateMonitors* monitors,
+               std::vector<double>* surface_max) const;
 
   /// RHS evaluations in which the zero-length rule fired.
   long zero_length_triggers() const { return zero_length_; }
@@ -79,6 +107,10 @@ class MechanismSystem final : public ode::OdeSystem {
   /// Adds F at node n into force_ (distributed for ghost points).
   void apply(const NodeRef& n, const Eigen::Vector3d& f) const;
   int transfers(const NodeRef& n, std::array<Transfer, 4>& out) const;
+  /// dissipate(): inverse effective mass of node n for an impulse [1/kg] (barycentric
+  /// ghost transfer: sum w_i^2 / m_i; anchors 0), and the impulse J [N s] applied to it.
+  double inverse_mass(const NodeRef& n) const;
+  void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
   void add_block(int row, int col, const Eigen::Matrix3d& b) const;
   void jac_force(const NodeRef& target, const NodeRef& source, const Eigen::Matrix3d& kx,
                  const Eigen::Matrix3d& kv) const;
@@ -138,6 +170,12 @@ class MechanismSystem final : public ode::OdeSystem {
   /// Anything dissipates or does work (dampers, friction, drag, actuators, surface
   /// dampers, body forces); otherwise power() is zero without evaluation.
   bool has_power_flows_ = false;
+  bool has_actuator_work_ = false;
+  bool has_attached_surfaces_ = false;
+  bool dissipation_split_ = true;
+  /// Set while conservative_rhs() runs: velocities of dissipative elements count as zero.
+  mutable bool conservative_ = false;
+  mutable ode::Vec dissipate_before_;  ///< dissipate(): the momenta before its updates
 };
 
 /// Compares the analytic Jacobian at (t, y) with central differences of the
