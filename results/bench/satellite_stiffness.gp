@@ -9,45 +9,45 @@ set format y '10^{%L}'
 set grid
 set key outside right
 $d0 << EOD
-10000 0.0404321
-100000 0.164441
-1e+06 0.572197
-1e+07 1.90084
-1e+08 6.06945
+10000 0.0403489
+100000 0.164995
+1e+06 0.569298
+1e+07 1.86994
+1e+08 5.8942
 EOD
 $d1 << EOD
-10000 0.00631697
-100000 0.0201372
-1e+06 0.0708642
-1e+07 0.245335
-1e+08 0.707889
+10000 0.00459826
+100000 0.0155991
+1e+06 0.0535819
+1e+07 0.172302
+1e+08 0.563012
 EOD
 $d2 << EOD
-10000 0.0608389
-100000 0.129581
-1e+06 0.184913
-1e+07 0.129097
-1e+08 0.195112
+10000 0.0538838
+100000 0.122251
+1e+06 0.170096
+1e+07 0.120868
+1e+08 0.186024
 EOD
 $d3 << EOD
-10000 0.0234675
-100000 0.0344723
-1e+06 0.0551033
-1e+07 0.0898942
-1e+08 0.173981
+10000 0.0201834
+100000 0.0326121
+1e+06 0.0501746
+1e+07 0.0821143
+1e+08 0.159066
 EOD
 $d4 << EOD
-10000 0.0434541
-100000 0.0987798
-1e+06 0.199858
-1e+07 0.419747
-1e+08 0.890353
+10000 0.0391307
+100000 0.0884089
+1e+06 0.179869
+1e+07 0.379816
+1e+08 0.703062
 EOD
 $d5 << EOD
-10000 0.00179179
-100000 0.00486696
-1e+06 0.0155566
-1e+07 0.0513718
-1e+08 0.150745
+10000 0.0012891
+100000 0.00398002
+1e+06 0.0124117
+1e+07 0.0395257
+1e+08 0.124985
 EOD
 plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d1 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'radau5 (state norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d4 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced, $d5 using 1:2 with linespoints title 'verlet (state norm)' noenhanced

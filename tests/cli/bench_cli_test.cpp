@@ -296,7 +296,18 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     for (const auto& r : doc["quad_hopper_drop"]) {
       INFO(r.dump());
       CHECK(r["status"] == "completed");
-      CHECK(r["energy_error_rel"].get<double>() < 1e-2);  // tol 1e-5: drift ~ tolerance
+      // Hop to hop (at the flight apexes) the balance holds for every method; RODAS4 at
+      // tol 1e-5 holds it everywhere (drift ~ tolerance); Verlet at h = 5e-4 s departs from
+      // it inside impacts by its bounded term h^2 |F|^2 / 8m (measured 4.4e-2).
+      CHECK(r["energy_error_apex_rel"].get<double>() < 1e-3);
+      if (r["method"] == "verlet") {
+        CHECK(r["energy_error_rel"].get<double>() < 0.1);
+      } else {
+        CHECK(r["energy_error_rel"].get<double>() < 1e-2);
+      }
+      // Apex heights against RODAS4 at tol 1e-8 (Verlet 5e-4 s: 4 % of the drop, measured).
+      CHECK(r["apex_height_vs_reference_rel"].get<double>() >= 0.0);
+      CHECK(r["apex_height_vs_reference_rel"].get<double>() < 0.06);
       REQUIRE(r["bounces"].get<int>() >= 2);
       const double loss = r["first_bounce_energy_loss_rel"].get<double>();
       CHECK(loss > 0.5 * feet_share);
