@@ -164,6 +164,13 @@ void MechanismSystem::apply(const NodeRef& n, const Vector3d& f) const {
     force_.segment<3>(3 * n.index) += f;
     return;
   }
+  if (n.kind == NodeRef::Kind::kGhost &&
+      m_.simulation.ghost_transfer == GhostTransfer::kBarycentric) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    const int first = m_.bodies[g.body].first_mass;
+    for (int i = 0; i < 4; ++i) force_.segment<3>(3 * (first + i)) += g.weights[i] * f;
+    return;
+  }
   std::array<Transfer, 4> tr;
   const int k = transfers(n, tr);
   for (int i = 0; i < k; ++i) force_.segment<3>(3 * tr[i].mass) += tr[i].t * f;
@@ -176,7 +183,7 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
   if (s.body >= 0) {
     const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
     p = node_position(g, y);
-    vp = node_velocity(g, y);
+    vp = s.damping != 0.0 ? node_velocity(g, y) : Vector3d::Zero();
     e.dir = frames_[s.body].rotation * s.direction;
   } else {
     p = s.point;
@@ -184,7 +191,9 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
     e.dir = s.direction;
   }
   e.r = node_position(n, y) - p;
-  e.v = conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - vp);
+  // The velocity enters only the damper and the friction.
+  const bool moving = !conservative_ && (s.damping != 0.0 || s.friction != 0.0);
+  e.v = moving ? Vector3d(node_velocity(n, y) - vp) : Vector3d::Zero();
   switch (s.type) {
     case SurfaceType::kPlane: {
       const double h = e.dir.dot(e.r);
@@ -221,12 +230,7 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
                                               const std::array<Matrix3d, 4>* known_omega) const {
   const Body& body = m_.bodies[s.body];
   const GhostPoint& gp = m_.ghost_points[s.ghost];
-  BodyFrame frame;
-  if (known_frame != nullptr) {
-    frame = *known_frame;
-  } else {
-    frame = fitted_frame(s.body, y);
-  }
+  const BodyFrame& frame = known_frame != nullptr ? *known_frame : fitted_frame(s.body, y);
   const Matrix3d& rot = frame.rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
   const Vector3d dir = rot * s.direction;
@@ -257,14 +261,16 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
     const int fn = m_.bodies[gn.body].first_mass;
     for (int i = 0; i < 4; ++i) out.emplace_back(fn + i, gn.weights[i] * force);
   }
-  std::array<Matrix3d, 4> omega{};
-  if (s.type != SurfaceType::kPoint) {
-    omega = known_omega != nullptr ? *known_omega : attitude_derivative(frame, body.local);
+  std::array<Matrix3d, 4> computed;
+  const std::array<Matrix3d, 4>* omega = known_omega;
+  if (s.type != SurfaceType::kPoint && omega == nullptr) {
+    computed = attitude_derivative(frame, body.local);
+    omega = &computed;
   }
   const Vector3d tau_body = rot.transpose() * tau;
   for (int i = 0; i < 4; ++i) {
     Vector3d f = -gp.weights[i] * force;
-    if (s.type != SurfaceType::kPoint) f += omega[i].transpose() * tau_body;
+    if (s.type != SurfaceType::kPoint) f += (*omega)[i].transpose() * tau_body;
     out.emplace_back(body.first_mass + i, f);
   }
 }
@@ -792,7 +798,11 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     switch (c.kind) {
       case ConnectionClass::kInternal:
         e.internal += u;
-        if (c.rest_length > 0.0) {
+        if (c.rest_length > 0.0 && c.stiffness > 0.0) {
+          // |l - l0| from the stored energy u = k (l - l0)^2 / 2 (no second norm).
+          mon.max_strain =
+              std::max(mon.max_strain, std::sqrt(2.0 * u / c.stiffness) / c.rest_length);
+        } else if (c.rest_length > 0.0) {
           mon.max_strain =
               std::max(mon.max_strain, std::abs(d.norm() - c.rest_length) / c.rest_length);
         }
