@@ -13,9 +13,11 @@
 // dissipation before the kicks let an undamped kick move a stuck foot: the creep and
 // the dissipation came out hc/2m times too large). Stiff dampers and regularised
 // friction then cost no stability (the step is limited by the springs alone), a creep
-// under a constant force has the exact speed F/c, the energy the dissipative updates
-// remove is booked exactly (booked_dissipation()), and without dissipation the method
-// is Verlet; the dissipation itself is first order.
+// under a constant force has the exact speed F/c, the dissipated energy is booked so
+// that E - T + booked dissipation is exactly constant for quadratic potentials
+// (booked_dissipation(); T = sum h^2 |F|^2 / 8m, Verlet's bounded term), and without
+// dissipation the method is Verlet; the dissipation itself is first order. The dense
+// output's slopes are then those of the kicks' forces (without the dissipative ones).
 //
 // Otherwise velocity-dependent forces (dampers, friction, drag) make the closing
 // kick implicit in p; it is made explicit by evaluating F at the predicted momentum
@@ -44,6 +46,7 @@ class VerletStepper final : public Stepper {
         f_prev_(Vec::Zero(n)),
         f_new_(Vec::Zero(n)),
         p_half_(Vec::Zero(n)),
+        y_ref_(Vec::Zero(n)),
         mask_(Vec::Zero(n)),
         q_mask_(Vec::Zero(n)) {}
 
@@ -92,8 +95,8 @@ class VerletStepper final : public Stepper {
     ++counters_.rhs_evaluations;
     y_new_.noalias() = p_half_ + (0.5 * h) * mask_.cwiseProduct(f_new_);
     if (split_) {
-      p_half_ = y_new_;
-      dissipated += sys.dissipate(t_new, 0.5 * h, p_half_, y_new_);
+      y_ref_ = y_new_;
+      dissipated += sys.dissipate(t_new, 0.5 * h, y_ref_, y_new_);
       sys.correct_step(y_, y_new_);
     }
     if (!y_new_.allFinite() || !f_new_.allFinite()) {
@@ -151,6 +154,7 @@ class VerletStepper final : public Stepper {
   Vec y_, y_prev_, y_new_;
   Vec f_, f_prev_, f_new_;   ///< f at t_, t_prev_ and the new point
   Vec p_half_;               ///< state after the drift (momenta at the half step)
+  Vec y_ref_;                ///< split: the state before the closing dissipative update
   Vec mask_;                 ///< 1 on momentum states, 0 on positions
   Vec q_mask_;               ///< 1 - mask_
   bool split_ = false;       ///< the system's dissipation split is applied

@@ -27,17 +27,14 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
   for (const Surface& s : m.surfaces) attached = attached || s.body >= 0;
   has_attached_surfaces_ = attached;
   for (const Connection& c : m.connections) {
-    has_power_flows_ = has_power_flows_ || c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0 ||
-                       c.kind == ConnectionClass::kActuator;
+    has_power_flows_ = has_power_flows_ || c.damping > 0.0 || c.friction > 0.0 || c.drag > 0.0;
+    has_actuator_work_ = has_actuator_work_ || c.kind == ConnectionClass::kActuator;
   }
   for (const Surface& s : m.surfaces) {
     has_power_flows_ = has_power_flows_ || s.damping > 0.0 || s.friction > 0.0;
   }
-  has_power_flows_ = has_power_flows_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
-  for (const Connection& c : m.connections) {
-    has_actuator_work_ = has_actuator_work_ || c.kind == ConnectionClass::kActuator;
-  }
   has_actuator_work_ = has_actuator_work_ || !m.body_forces.empty() || !m.impulse_actuators.empty();
+  has_power_flows_ = has_power_flows_ || has_actuator_work_;
   if (m.simulation.ghost_transfer == GhostTransfer::kMinNorm) {
     auto ghost = [](const NodeRef& n) { return n.kind == NodeRef::Kind::kGhost; };
     for (const Connection& c : m.connections) {
