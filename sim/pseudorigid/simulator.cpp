@@ -313,13 +313,33 @@ RunSummary simulate(const Mechanism& m) {
       out.energy_drift > kEnergyDriftWarning * out.energy_scale) {
     // Below the blow-up factor, but not solver accuracy either: e.g. explicit Euler slowly
     // pumping the internal vibration (1e-2 ... 10 of the scale before it is a blow-up).
-    std::snprintf(buf, sizeof buf,
-                  "the energy balance drifted by %.3g J, %.3g of the energy scale %.3g J: the "
-                  "step is too large or the tolerance too loose (an explicit solver near its "
-                  "stability limit, or the min_norm ghost transfer); do not read this run as "
-                  "physics",
-                  out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale);
-    out.warnings["energy_balance_drift"] = buf;
+    const double end_drift = out.t.empty()
+                                 ? 0.0
+                                 : std::abs(out.energies.back().total() + out.dissipated.back() -
+                                            out.actuator_work.back() - balance0);
+    char text[800];
+    if (stepper->books_dissipation() && end_drift <= kEnergyDriftWarning * out.energy_scale) {
+      // Verlet's energy departs from its exactly balanced modified energy by
+      // h^2 |F|^2 / 8m where large forces act on light masses, and returns from it (the
+      // quad hopper drop at h = 5e-4 s: 4.4e-2 of the drop energy inside impacts, 2.4e-5 at
+      // the flight apexes).
+      std::snprintf(text, sizeof text,
+                    "the energy balance departed by %.3g J, %.3g of the energy scale %.3g J, at "
+                    "its worst sample but by %.3g J at the end: method verlet's energy carries "
+                    "the bounded term h^2 |F|^2 / 8m where large forces act on light masses "
+                    "(impacts) and returns from it; read the balance between such events, or "
+                    "halve h_fixed (the term shrinks 4x or more)",
+                    out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale,
+                    end_drift);
+    } else {
+      std::snprintf(text, sizeof text,
+                    "the energy balance drifted by %.3g J, %.3g of the energy scale %.3g J: the "
+                    "step is too large or the tolerance too loose (an explicit solver near its "
+                    "stability limit, or the min_norm ghost transfer); do not read this run as "
+                    "physics",
+                    out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale);
+    }
+    out.warnings["energy_balance_drift"] = text;
   }
   if (out.max_strain > opt.strain_budget) {
     std::snprintf(buf, sizeof buf,

@@ -59,6 +59,13 @@ TEST_CASE("verlet: an elastic ball keeps its energy exactly through contact", "[
   CHECK(flights > 2000);
   CHECK(worst < 1e-11 * e0);        // round-off over 3000 steps
   CHECK(r.max_penetration > 1e-3);  // it did bounce (v = 1.4 m/s into 1e5 N/m: ~1 mm)
+  // Inside the contact E departs from E - T by T = h^2 (k z)^2 / 8m, beyond 1e-2 of the
+  // energy scale: the warning says so, and that the balance returned.
+  INFO("worst balance " << r.energy_drift << " J, scale " << r.energy_scale << " J");
+  REQUIRE(r.warnings.count("energy_balance_drift") == 1);
+  const std::string& w = r.warnings.at("energy_balance_drift");
+  CHECK(w.find("method verlet") != std::string::npos);
+  CHECK(w.find("do not read this run as physics") == std::string::npos);
   // Apex heights: the ball returns to 0.1 m (the last apex before 3 s).
   double apex = 0.0;
   for (size_t i = r.t.size() / 2; i < r.t.size(); ++i) apex = std::max(apex, r.y[i][2]);
