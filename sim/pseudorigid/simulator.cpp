@@ -79,8 +79,8 @@ class SolverView final : public ode::OdeSystem {
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.conservative_rhs(t, y, dydt);
   }
-  double dissipate(double t, double h, const ode::Vec& y_start, ode::Vec& y) const override {
-    return sys_.dissipate(t, h, y_start, y);
+  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override {
+    return sys_.dissipate(t, h, y_ref, y);
   }
   void correct_step(const ode::Vec& y0, ode::Vec& y1) const override { sys_.correct_step(y0, y1); }
   bool has_error_norm() const override { return true; }
@@ -205,8 +205,8 @@ RunSummary simulate(const Mechanism& m) {
       // Dissipation and actuator work over [ta, te] (te <= tb) by Gauss-Legendre on the
       // step's dense output.
       // A stepper that applies the dissipation split books the dissipated energy itself
-      // (exactly what its dissipative updates removed; linear in time inside a step); the
-      // actuator work is then the only integral.
+      // (OdeSystem::dissipate; linear in time inside a step); the actuator work is then
+      // the only integral.
       const bool booked = stepper->books_dissipation();
       const double booked_b = stepper->booked_dissipation();
       auto flows = [&](double te, double* d, double* w) {
@@ -273,9 +273,12 @@ RunSummary simulate(const Mechanism& m) {
     out.dissipated.pop_back();
     out.actuator_work.pop_back();
   }
+  // |E + dissipated - actuator work - balance at t = 0| at sample i [J].
+  auto sample_drift = [&](size_t i) {
+    return std::abs(out.energies[i].total() + out.dissipated[i] - out.actuator_work[i] - balance0);
+  };
   for (size_t i = 0; i < out.t.size(); ++i) {
-    const double b = out.energies[i].total() + out.dissipated[i] - out.actuator_work[i];
-    out.energy_drift = std::max(out.energy_drift, std::abs(b - balance0));
+    out.energy_drift = std::max(out.energy_drift, sample_drift(i));
   }
   out.t_reached = diverged ? (out.t.empty() ? 0.0 : out.t.back()) : stepper->t();
   out.counters = stepper->counters();
@@ -313,10 +316,7 @@ RunSummary simulate(const Mechanism& m) {
       out.energy_drift > kEnergyDriftWarning * out.energy_scale) {
     // Below the blow-up factor, but not solver accuracy either: e.g. explicit Euler slowly
     // pumping the internal vibration (1e-2 ... 10 of the scale before it is a blow-up).
-    const double end_drift = out.t.empty()
-                                 ? 0.0
-                                 : std::abs(out.energies.back().total() + out.dissipated.back() -
-                                            out.actuator_work.back() - balance0);
+    const double end_drift = out.t.empty() ? 0.0 : sample_drift(out.t.size() - 1);
     char text[800];
     if (stepper->books_dissipation() && end_drift <= kEnergyDriftWarning * out.energy_scale) {
       // Verlet's energy departs from its exactly balanced modified energy by
