@@ -162,6 +162,7 @@ class Loader {
     j["rtol"] = o.solver.rtol;
     j["atol"] = o.solver.atol;
     j["h_fixed"] = o.solver.h_fixed;
+    j["energy_tol"] = o.energy_tol;
     j["h_initial"] = o.solver.h_initial;
     j["h_max"] = o.solver.h_max;
     j["h_min"] = o.solver.h_min;
@@ -216,6 +217,7 @@ class Loader {
     o->solver.rtol = s.positive_or("rtol", o->solver.rtol);
     o->solver.atol = s.positive_or("atol", o->solver.atol);
     o->solver.h_fixed = s.positive_or("h_fixed", o->solver.h_fixed);
+    o->energy_tol = s.number_or("energy_tol", o->energy_tol, 0.0, 0.5);
     o->solver.h_initial = s.number_or("h_initial", o->solver.h_initial, 0.0);
     o->solver.h_max = s.positive_or("h_max", o->solver.h_max);
     o->solver.h_min = s.positive_or("h_min", o->solver.h_min);

@@ -46,6 +46,12 @@ class OdeSystem {
   /// Writes G(p) into the position entries of dydt; leaves its momentum entries unchanged.
   /// Must be much cheaper than rhs() (the stepper calls it twice per step).
   virtual void position_rate(const Vec& /*y*/, Vec& /*dydt*/) const {}
+  /// Optional, with the mechanical split: the kinetic energy 1/2 p^T M^-1 p [J] of the
+  /// momentum entries of y (positions ignored), the metric of Verlet's bounded energy term
+  /// T = h^2 / 4 kinetic_energy(F) (F in the momentum entries) that
+  /// SolverOptions::verlet_energy_budget keeps in bounds. Returns a negative number when
+  /// the system has no such metric (the default).
+  virtual double kinetic_energy(const Vec& /*y*/) const { return -1.0; }
 
   /// Optional dissipation split for the symplectic stepper (needs the mechanical split): the
   /// velocity-dependent dissipative forces (dampers, friction, drag) leave the kicks and act

@@ -38,6 +38,13 @@ struct SolverOptions {
   double rtol = 1e-9;          ///< relative tolerance (adaptive methods)
   double atol = 1e-9;          ///< absolute tolerance (adaptive methods)
   double h_fixed = 1e-3;       ///< step [s] of the fixed-step methods
+  /// verlet only: 0 (default) takes every step at h_fixed. A positive budget [J] makes
+  /// h_fixed the step of the output grid, each taken as the fewest equal sub-steps h for which
+  /// Verlet's bounded energy term T = sum h^2 |F_j|^2 / 8 m_j (the departure of the sampled
+  /// energy from the exactly conserved modified energy) stays within the budget at every
+  /// sub-step: a step whose T exceeds it is retried finer; the next grid step coarsens once T
+  /// at the coarser step would be below a quarter of it. Needs OdeSystem::kinetic_energy().
+  double verlet_energy_budget = 0.0;
   double h_initial = 0.0;      ///< first trial step [s] of adaptive methods; 0 = automatic
   double h_max = 0.1;          ///< largest step [s]
   double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]

@@ -71,6 +71,9 @@ bool SolverOptions::validate(std::string* error) const {
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;
   if (!positive_finite(error, "h_fixed", h_fixed)) return false;
+  if (!(verlet_energy_budget >= 0.0) || !std::isfinite(verlet_energy_budget)) {
+    return fail(error, "verlet_energy_budget", verlet_energy_budget, "must be >= 0 and finite");
+  }
   if (!(h_initial >= 0.0)) return fail(error, "h_initial", h_initial, "must be >= 0");
   if (!std::isfinite(h_initial)) return fail(error, "h_initial", h_initial, "must be finite");
   if (!(h_max > 0.0)) return fail(error, "h_max", h_max, "must be > 0");

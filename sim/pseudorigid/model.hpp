@@ -61,6 +61,12 @@ struct SimulationOptions {
   GhostTransfer ghost_transfer = GhostTransfer::kBarycentric;
   bool check_jacobian = false;  ///< compare the analytic Jacobian with central differences at t=0
   double zero_length_epsilon = 1e-12;  ///< connection length below which no direction exists [m]
+  /// Method verlet: 0 (default) steps at h_fixed. A positive value bounds Verlet's bounded
+  /// energy term h^2 |F|^2 / 8m (the sampled energy's departure from the conserved modified
+  /// energy, large inside impacts) to energy_tol x the run's energy scale at every step:
+  /// h_fixed becomes the grid step, sub-stepped where needed
+  /// (ode::SolverOptions::verlet_energy_budget). Ignored by the other methods.
+  double energy_tol = 0.0;
   /// Accuracy budgets: a run whose realised maximum internal strain (|l - l0| / l0) or
   /// penetration / constraint violation [m] exceeds them completes with a warning
   /// (RunSummary::warnings), so a user sees that the pseudo-rigid approximation did not hold.

@@ -75,6 +75,7 @@ class SolverView final : public ode::OdeSystem {
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.position_rate(y, dydt);
   }
+  double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
   bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.conservative_rhs(t, y, dydt);
@@ -115,9 +116,6 @@ RunSummary simulate(const Mechanism& m) {
 
   const std::vector<double> bps = breakpoints(m);
   sys.set_segment_time(0.5 * bps.front());
-  auto stepper = ode::make_stepper(opt.solver, n);
-  const SolverView view(sys, m);
-  stepper->reset(view, 0.0, y);
   out.max_surface_force.assign(m.surfaces.size(), 0.0);
 
   double dissipated = 0.0, work = 0.0;
@@ -162,6 +160,14 @@ RunSummary simulate(const Mechanism& m) {
                        m.total_mass() * m.gravity.norm() * (hi - lo).norm() + 1e-9;
   }
   const double blowup = opt.energy_blowup_factor * out.energy_scale;
+  // Method verlet with an energy tolerance: the bound on its bounded term in joules.
+  ode::SolverOptions solver = opt.solver;
+  if (solver.method == ode::Method::kVerlet && opt.energy_tol > 0.0) {
+    solver.verlet_energy_budget = opt.energy_tol * out.energy_scale;
+  }
+  auto stepper = ode::make_stepper(solver, n);
+  const SolverView view(sys, m);
+  stepper->reset(view, 0.0, y);
 
   // Gauss-Legendre 3-point nodes and weights on [0, 1].
   const double gl_s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};

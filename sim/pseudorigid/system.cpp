@@ -593,6 +593,13 @@ void MechanismSystem::position_rate(const ode::Vec& y, ode::Vec& dydt) const {
   for (int j = 0; j < nm; ++j) dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
 }
 
+double MechanismSystem::kinetic_energy(const ode::Vec& y) const {
+  const int nm = static_cast<int>(m_.masses.size());
+  double k = 0.0;
+  for (int j = 0; j < nm; ++j) k += 0.5 * seg(y, 6 * j + 3).squaredNorm() * inv_mass_[j];
+  return k;
+}
+
 // ---------------------------------------------------------------------------
 // Jacobian
 

@@ -42,6 +42,8 @@ class MechanismSystem final : public ode::OdeSystem {
   bool has_mechanical_split() const override { return true; }
   void momentum_mask(ode::Vec& mask) const override;
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
+  /// sum |p_j|^2 / 2 m_j [J] over the momentum entries of y.
+  double kinetic_energy(const ode::Vec& y) const override;
 
   /// Dissipation split (method verlet): the dampers, friction and drag of connections (not
   /// actuators) and surfaces leave the kicks. Offered unless a dissipative element acts on a
