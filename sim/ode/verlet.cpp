@@ -101,10 +101,17 @@ class VerletStepper final : public Stepper {
     y_prev_ = y;
     forces(sys, t_, y_, f_);
     f_prev_ = f_;
-    // The closing dissipative force of the last step is kept (zero at the start): a held foot
-    // stays held across a restart, and T_net changes only as far as the forces do; that
-    // change, like a step-size switch, enters the switching offset.
+    // The dissipative force at the restart point: the mean one of the next opening half step
+    // (it has no closing one), so a foot held at the start starts with T_net near zero. The
+    // change of T_net, like a step-size switch, enters the switching offset.
     if (metric_) {
+      if (split_) {
+        const double h = h_fixed_ / substeps_;
+        y_ref_ = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
+        y_new_ = y_ref_;
+        sys.dissipate(t_, 0.5 * h, y_, y_new_);
+        fd_ = (2.0 / h) * (y_new_ - y_ref_);
+      }
       held_force(f_, fd_, work_);
       const double k_net = sys.kinetic_energy(work_);
       offset_ += 0.25 * h_last_ * h_last_ * (k_net_ - k_net);
@@ -146,7 +153,6 @@ class VerletStepper final : public Stepper {
       // to half the budget.
       ++counters_.steps_rejected;
       const int finer = rung(substeps_ * std::sqrt(term / (0.5 * budget_)));
-      offset_ += 0.25 * h * h * k_net_ * (1.0 - std::pow(static_cast<double>(substeps_) / finer, 2));
       remaining_ *= finer / substeps_;
       grid_steps_at_rung_ = 0;
       substeps_ = finer;
@@ -161,6 +167,9 @@ class VerletStepper final : public Stepper {
     // leaves E - T_net + D constant instead, T_net = sum h^2 |F + F_d|^2 / 8m with F_d the
     // closing half step's mean dissipative force: zero for a held foot, T in free motion.
     if (metric_) dissipated -= 0.25 * h * h * (k_gap - k_gap_);
+    // A step size other than the last one's (a rung switch, a refined retry, a grid step cut
+    // short at t_limit) changes the invariant by T_net(h_last) - T_net(h) at the start point.
+    if (metric_ && h_last_ > 0.0) offset_ += 0.25 * (h_last_ * h_last_ - h * h) * k_net_;
 
     y_prev_.swap(y_);
     y_.swap(y_new_);
@@ -198,6 +207,11 @@ class VerletStepper final : public Stepper {
   SolverCounters& mutable_counters() override { return counters_; }
   bool books_dissipation() const override { return split_; }
   double booked_dissipation() const override { return dissipated_; }
+  double verlet_term() const override {
+    const double h = h_last_ > 0.0 ? h_last_ : h_fixed_ / substeps_;
+    return 0.25 * h * h * k_net_;
+  }
+  double switching_offset() const override { return offset_; }
 
  private:
   /// One Verlet step of size h from (t_, y_, f_) to t_new into y_new_, f_new_ (the kicks'
@@ -254,7 +268,6 @@ class VerletStepper final : public Stepper {
     };
     const int up = rung(std::sqrt(term / (kUp * budget_)) * substeps_);
     if (up > substeps_) {
-      offset_ += jump(up);
       substeps_ = up;
       grid_steps_at_rung_ = 0;
       return;
@@ -265,7 +278,6 @@ class VerletStepper final : public Stepper {
     for (int k = 1; k < substeps_; k *= 2) {
       const double j = jump(k);
       if (std::abs(offset_ + j) <= std::abs(offset_) || std::abs(j) <= small) {
-        offset_ += j;
         substeps_ = k;
         grid_steps_at_rung_ = 0;
         return;
