@@ -333,8 +333,8 @@ RunSummary simulate(const Mechanism& m) {
                     "the energy balance departed by %.3g J, %.3g of the energy scale %.3g J, at "
                     "its worst sample but by %.3g J at the end: method verlet's energy carries "
                     "the bounded term h^2 |F|^2 / 8m where large forces act on light masses "
-                    "(impacts) and returns from it; read the balance between such events, or "
-                    "halve h_fixed (the term shrinks 4x or more)",
+                    "(impacts) and returns from it; read the balance between such events, or set "
+                    "simulation.energy_tol (sub-steps the impacts) or halve h_fixed",
                     out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale,
                     end_drift);
     } else {
