@@ -32,6 +32,14 @@ def g(x, digits=3):
     return t
 
 
+def verlet_setting(r):
+    """A Verlet run's setting: its step, and its energy budget when it has one."""
+    s = f"h {g(r['h'])} s"
+    if r.get("energy_tol", 0):
+        s += f", energy_tol {g(r['energy_tol'])}"
+    return s
+
+
 def ms(seconds):
     return f"{seconds * 1e3:.3g} ms" if seconds < 1 else f"{seconds:.3g} s"
 
@@ -118,7 +126,7 @@ def section(d, figdir):
     mj = q.get("mujoco_euler_1ms")
     if qp.get("found", True) and "cost_per_sim_s" in qp:
         qm = qp.get("method", "rodas4")
-        qs = f"h {g(qp['h'])} s" if qm == "verlet" else f"{qp['norm']} norm tol {g(qp['tol'])}"
+        qs = verlet_setting(qp) if qm == "verlet" else f"{qp['norm']} norm tol {g(qp['tol'])}"
         txt = (f"pronk {qm.upper()} {qs}: {ms(qp['cost_per_sim_s'] * 10)} "
                f"per 10 s (energy error {g(qp['energy_error_rel'])})")
         if mj is not None:
@@ -129,7 +137,7 @@ def section(d, figdir):
     qa = q.get("pronk_apex_balance", {})
     if qa.get("found", True) and "cost_per_sim_s" in qa:
         qm = qa.get("method", "rodas4")
-        qs = f"h {g(qa['h'])} s" if qm == "verlet" else f"tol {g(qa['tol'])}"
+        qs = verlet_setting(qa) if qm == "verlet" else f"tol {g(qa['tol'])}"
         txt = (f"pronk {qm.upper()} {qs}: {ms(qa['cost_per_sim_s'] * 10)} per 10 s (energy "
                f"balance at the apexes {g(qa['energy_error_apex_rel'])}, at every sample "
                f"{g(qa['energy_error_rel'])}; apex heights within "
@@ -295,7 +303,7 @@ def section(d, figdir):
     rows = []
     for r in d["quad_hopper_drop"]:
         meth = r.get("method", "rodas4")
-        setting = f"h {g(r['h'])} s" if meth == "verlet" else f"tol {g(r['tol'])}"
+        setting = verlet_setting(r) if meth == "verlet" else f"tol {g(r['tol'])}"
         name = "pronk VERLET" if meth == "verlet" else f"pronk {meth.upper()} {r['norm']} norm"
         rows.append([name, setting, r["status"],
                      ms(r["cost_per_sim_s"]), r["steps"],

@@ -300,7 +300,11 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
       // tol 1e-5 holds it everywhere (drift ~ tolerance); Verlet at h = 5e-4 s departs from
       // it inside impacts by its bounded term h^2 |F|^2 / 8m (measured 4.4e-2).
       CHECK(r["energy_error_apex_rel"].get<double>() < 1e-3);
-      if (r["method"] == "verlet") {
+      if (r["method"] == "verlet" && r["energy_tol"].get<double>() > 0.0) {
+        // With energy_tol = 1e-4 of the energy scale (8.9 J = 3.9x the drop energy) every
+        // sample stays within the budget plus the switching offset.
+        CHECK(r["energy_error_rel"].get<double>() < 1e-3);
+      } else if (r["method"] == "verlet") {
         CHECK(r["energy_error_rel"].get<double>() < 0.1);
       } else {
         CHECK(r["energy_error_rel"].get<double>() < 1e-2);
