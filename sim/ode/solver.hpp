@@ -115,8 +115,9 @@ class Stepper {
   /// Energy the dissipative updates removed since the stepper was made [J] (not reset by
   /// reset()); 0 when books_dissipation() is false.
   virtual double booked_dissipation() const { return 0.0; }
-  /// Verlet with a kinetic-energy metric (OdeSystem::kinetic_energy): its bounded term at the
-  /// current point, T_net = sum h^2 |F + a F_d|^2 / 8 m [J] (see verlet.cpp), so that
+  /// Verlet with a kinetic-energy metric (OdeSystem::kinetic_energy) and a dissipation split
+  /// or an energy budget: its bounded term at the current point,
+  /// T_net = sum h^2 |F + a F_d|^2 / 8 m [J] (see verlet.cpp), so that
   /// energy - verlet_term() + booked_dissipation() - switching_offset() is constant for
   /// quadratic potentials; 0 otherwise.
   virtual double verlet_term() const { return 0.0; }

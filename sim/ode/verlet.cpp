@@ -86,11 +86,14 @@ class VerletStepper final : public Stepper {
     }
     sys.momentum_mask(mask_);
     split_ = sys.has_dissipation_split();
-    metric_ = sys.kinetic_energy(y) >= 0.0;
-    if (budget_ > 0.0 && !metric_) {
+    const bool has_metric = sys.kinetic_energy(y) >= 0.0;
+    if (budget_ > 0.0 && !has_metric) {
       throw std::invalid_argument(
           "verlet_energy_budget needs the system's kinetic-energy metric; this system has none");
     }
+    // Without the split T_net is T and the booking needs no correction: the metric is then
+    // evaluated only for a budget.
+    metric_ = has_metric && (split_ || budget_ > 0.0);
     q_mask_ = Vec::Ones(mask_.size()) - mask_;
     t_ = t;
     t_prev_ = t;
@@ -142,9 +145,14 @@ class VerletStepper final : public Stepper {
       if (!metric_) break;
       // Kinetic energies of the net force (kicks' plus closing dissipative) and of the kicks'
       // force alone at the new point, per unit h^2 / 4.
-      held_force(f_new_, fd_new_, work_);
-      k_net = sys.kinetic_energy(work_);
-      k_gap = sys.kinetic_energy(f_new_) - k_net;
+      if ((fd_new_.array() == 0.0).all()) {  // nothing dissipative acted: T_net = T
+        k_net = sys.kinetic_energy(f_new_);
+        k_gap = 0.0;
+      } else {
+        held_force(f_new_, fd_new_, work_);
+        k_net = sys.kinetic_energy(work_);
+        k_gap = sys.kinetic_energy(f_new_) - k_net;
+      }
       const double term = 0.25 * h * h * k_net;
       if (!(budget_ > 0.0) || !(term > budget_) || substeps_ >= kMaxSubsteps || h <= h_min_) {
         break;
@@ -330,7 +338,7 @@ class VerletStepper final : public Stepper {
   Vec mask_;                ///< 1 on momentum states, 0 on positions
   Vec q_mask_;              ///< 1 - mask_
   bool split_ = false;      ///< the system's dissipation split is applied
-  bool metric_ = false;     ///< the system has a kinetic-energy metric
+  bool metric_ = false;     ///< T_net is tracked (a metric, and a split or a budget)
   double k_net_ = 0.0;      ///< kinetic energy of the net force at t_ [J s^2/... per h^2/4]
   double k_gap_ = 0.0;      ///< kinetic energy of the kicks' force minus k_net_ at t_
   int grid_steps_at_rung_ = 0;  ///< grid steps taken since the rung last changed

@@ -79,6 +79,8 @@ TEST_CASE("a valid mechanism document builds the expected components", "[io][mec
   CHECK(m.simulation.solver.method == pronk::ode::Method::kRodas4);
   CHECK(m.simulation.solver.max_steps_per_second == 1e6);
   CHECK(lm.resolved["simulation"]["max_steps_per_second"] == 1e6);
+  CHECK(m.simulation.energy_tol == 0.0);  // verlet's energy budget is off by default
+  CHECK(lm.resolved["simulation"]["energy_tol"] == 0.0);
   // Full tensor equal to the principal one gives the same mass placement.
   json full = base();
   full["bodies"][0]["inertia"] = json::parse("[[1,0,0],[0,1,0],[0,0,0.5]]");
@@ -140,6 +142,8 @@ TEST_CASE("bad mechanism input names the exact JSON Pointer", "[io][mechanism]")
       {"bad error norm", "/simulation/error_norm", "\"max\"", "/simulation/error_norm"},
       {"negative crawl guard", "/simulation/max_steps_per_second", "-1",
        "/simulation/max_steps_per_second"},
+      {"negative energy tolerance", "/simulation/energy_tol", "-1e-4", "/simulation/energy_tol"},
+      {"energy tolerance above 0.5", "/simulation/energy_tol", "0.9", "/simulation/energy_tol"},
       {"stiffness word other than auto", "/simulation/internal_stiffness", "\"stiff\"",
        "/simulation/internal_stiffness"},
       {"stiffness of wrong type", "/simulation/contact_stiffness", "true",

@@ -423,6 +423,10 @@ TEST_CASE("ode: the crawl guard ends an adaptive run that crawls at a discontinu
   std::string err;
   CHECK_FALSE(o.validate(&err));
   CHECK(err.find("max_steps_per_second") != std::string::npos);
+  o.max_steps_per_second = 1.0;
+  o.verlet_energy_budget = -1.0;
+  CHECK_FALSE(o.validate(&err));
+  CHECK(err.find("verlet_energy_budget") != std::string::npos);
 }
 
 TEST_CASE("ode: a non-finite event value stops the integration", "[ode]") {
