@@ -65,7 +65,9 @@ struct SimulationOptions {
   /// energy term h^2 |F|^2 / 8m (the sampled energy's departure from the conserved modified
   /// energy, large inside impacts) to energy_tol x the run's energy scale at every step:
   /// h_fixed becomes the grid step, sub-stepped where needed
-  /// (ode::SolverOptions::verlet_energy_budget). Ignored by the other methods.
+  /// (ode::SolverOptions::verlet_energy_budget). The term is the balance's whole departure
+  /// for quadratic potentials only: springs that turn within a step add Verlet's own O(h^2)
+  /// error (the run's energy_drift reports the total). Ignored by the other methods.
   double energy_tol = 0.0;
   /// Accuracy budgets: a run whose realised maximum internal strain (|l - l0| / l0) or
   /// penetration / constraint violation [m] exceeds them completes with a warning
