@@ -35,9 +35,9 @@ bool is_adaptive(Method m);
 /// How to integrate. Defaults suit the reduced models.
 struct SolverOptions {
   Method method = Method::kDopri5;
-  double rtol = 1e-9;          ///< relative tolerance (adaptive methods)
-  double atol = 1e-9;          ///< absolute tolerance (adaptive methods)
-  double h_fixed = 1e-3;       ///< step [s] of the fixed-step methods
+  double rtol = 1e-9;     ///< relative tolerance (adaptive methods)
+  double atol = 1e-9;     ///< absolute tolerance (adaptive methods)
+  double h_fixed = 1e-3;  ///< step [s] of the fixed-step methods
   /// verlet only: 0 (default) takes every step at h_fixed. A positive budget [J] makes
   /// h_fixed the step of the output grid, each taken as the fewest equal sub-steps h for which
   /// Verlet's bounded energy term T = sum h^2 |F_j|^2 / 8 m_j (the departure of the sampled

@@ -330,21 +330,21 @@ class VerletStepper final : public Stepper {
   double t_base_ = 0.0;        ///< time the step grid counts from [s]
   long steps_since_base_ = 0;  ///< grid steps taken on the current grid
   Vec y_, y_prev_, y_new_;
-  Vec f_, f_prev_, f_new_;  ///< f at t_, t_prev_ and the new point
-  Vec fd_, fd_new_;         ///< mean dissipative force of the closing half step [N]
-  Vec p_half_;              ///< state after the drift (momenta at the half step)
-  Vec y_ref_;               ///< split: the state before the closing dissipative update
-  Vec work_;                ///< scratch: the net force
-  Vec mask_;                ///< 1 on momentum states, 0 on positions
-  Vec q_mask_;              ///< 1 - mask_
-  bool split_ = false;      ///< the system's dissipation split is applied
-  bool metric_ = false;     ///< T_net is tracked (a metric, and a split or a budget)
-  double k_net_ = 0.0;      ///< kinetic energy of the net force at t_ [J s^2/... per h^2/4]
-  double k_gap_ = 0.0;      ///< kinetic energy of the kicks' force minus k_net_ at t_
+  Vec f_, f_prev_, f_new_;      ///< f at t_, t_prev_ and the new point
+  Vec fd_, fd_new_;             ///< mean dissipative force of the closing half step [N]
+  Vec p_half_;                  ///< state after the drift (momenta at the half step)
+  Vec y_ref_;                   ///< split: the state before the closing dissipative update
+  Vec work_;                    ///< scratch: the net force
+  Vec mask_;                    ///< 1 on momentum states, 0 on positions
+  Vec q_mask_;                  ///< 1 - mask_
+  bool split_ = false;          ///< the system's dissipation split is applied
+  bool metric_ = false;         ///< T_net is tracked (a metric, and a split or a budget)
+  double k_net_ = 0.0;          ///< kinetic energy of the net force at t_ [J s^2/... per h^2/4]
+  double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_
   int grid_steps_at_rung_ = 0;  ///< grid steps taken since the rung last changed
-  double h_last_ = 0.0;      ///< size of the last accepted step [s]
-  double offset_ = 0.0;      ///< accumulated change of E - T_net + D at step-size switches [J]
-  double dissipated_ = 0.0;  ///< energy the dissipative halves removed [J]
+  double h_last_ = 0.0;         ///< size of the last accepted step [s]
+  double offset_ = 0.0;         ///< accumulated change of E - T_net + D at step-size switches [J]
+  double dissipated_ = 0.0;     ///< energy the dissipative halves removed [J]
   SolverCounters counters_;
 };
 

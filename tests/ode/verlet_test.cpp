@@ -308,13 +308,11 @@ TEST_CASE("verlet books with the held force: E - T_net + D is exact, T_net vanis
       y << 0.05, 0.4;
       s->reset(sys, 0.0, y);
       REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);  // from a closing half step on
-      const double i0 =
-          sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
+      const double i0 = sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
       double worst = 0.0, worst_term = 0.0;
       for (int i = 0; i < 5000; ++i) {
         REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);
-        const double inv =
-            sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
+        const double inv = sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
         worst = std::max(worst, std::abs(inv - i0));
         worst_term = std::max(worst_term, std::abs(s->verlet_term() - sys.held_term(s->y(), h)));
       }

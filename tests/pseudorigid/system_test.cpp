@@ -193,8 +193,8 @@ TEST_CASE("verlet: a damped, frictional, draggy connection keeps momentum and it
   INFO("worst |E - T_net + D - I0| " << worst_e << ", T - T_net up to " << worst_gap << " J");
   CHECK(worst_p < 1e-13);
   CHECK(worst_e < 1e-12 * i0);
-  CHECK(worst_kick < 1e-12 * i0);      // the same invariant through the kicks' term
-  CHECK(worst_gap > 1e-3 * i0);        // the damper does cancel part of the force at times
+  CHECK(worst_kick < 1e-12 * i0);             // the same invariant through the kicks' term
+  CHECK(worst_gap > 1e-3 * i0);               // the damper does cancel part of the force at times
   CHECK(s->booked_dissipation() > 0.5 * i0);  // the relative motion is damped out
 }
 
@@ -266,8 +266,7 @@ TEST_CASE("verlet: the quad hopper drop against RODAS4", "[pseudorigid]") {
   }
 }
 
-TEST_CASE("verlet with an energy budget keeps every sample's balance near it",
-          "[pseudorigid]") {
+TEST_CASE("verlet with an energy budget keeps every sample's balance near it", "[pseudorigid]") {
   // The elastic ball at h_fixed = 1e-3 s departs from its balance by h^2 (k z)^2 / 8m inside
   // each contact: up to the whole energy scale. With energy_tol = 1e-4 the 3 ms contacts are
   // sub-stepped (omega h = 1.41 at h_fixed: ~100 sub-steps) so that every sample stays within
@@ -299,8 +298,7 @@ TEST_CASE("verlet with an energy budget: the quad hopper's balance at every samp
   // balance to 2.1e-3 of the energy scale; with energy_tol = 1e-4 it stays within that at
   // every 1 ms sample (4.4e-5 measured), for ~3 % more steps.
   pronk::pseudorigid::Mechanism m =
-      pronk::io::parse_mechanism(pronk::app::bench::quad_hopper_mechanism(2.0), "<quad>")
-          .mechanism;
+      pronk::io::parse_mechanism(pronk::app::bench::quad_hopper_mechanism(2.0), "<quad>").mechanism;
   m.simulation.solver.method = Method::kVerlet;
   m.simulation.solver.h_fixed = 5e-4;
   const RunSummary fixed = simulate(m);
@@ -310,8 +308,7 @@ TEST_CASE("verlet with an energy budget: the quad hopper's balance at every samp
   REQUIRE(r.status == RunStatus::kCompleted);
   INFO("worst balance " << r.energy_drift / r.energy_scale << " (fixed "
                         << fixed.energy_drift / fixed.energy_scale << "), steps "
-                        << r.counters.steps_accepted << ", rejected "
-                        << r.counters.steps_rejected);
+                        << r.counters.steps_accepted << ", rejected " << r.counters.steps_rejected);
   CHECK(fixed.energy_drift > 10.0 * 1e-4 * fixed.energy_scale);
   CHECK(r.energy_drift < 1e-4 * r.energy_scale);
   CHECK(r.counters.steps_accepted < 1.05 * fixed.counters.steps_accepted);
