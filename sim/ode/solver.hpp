@@ -39,11 +39,12 @@ struct SolverOptions {
   double atol = 1e-9;     ///< absolute tolerance (adaptive methods)
   double h_fixed = 1e-3;  ///< step [s] of the fixed-step methods
   /// verlet only: 0 (default) takes every step at h_fixed. A positive budget [J] makes
-  /// h_fixed the step of the output grid, each taken as the fewest equal sub-steps h for which
-  /// Verlet's bounded energy term T = sum h^2 |F_j|^2 / 8 m_j (the departure of the sampled
-  /// energy from the exactly conserved modified energy) stays within the budget at every
-  /// sub-step: a step whose T exceeds it is retried finer; the next grid step coarsens once T
-  /// at the coarser step would be below a quarter of it. Needs OdeSystem::kinetic_energy().
+  /// h_fixed the step of the output grid, each taken as 2^j equal sub-steps so that Verlet's
+  /// bounded energy term T_net (sum h^2 |F|^2 / 8 m_j of the force the dissipation does not
+  /// hold; the departure of the sampled energy from the exactly conserved modified energy)
+  /// stays within the budget: a sub-step whose T_net exceeds it is retried finer; grid points
+  /// coarsen by small switches or ones that undo the switching offset (verlet.cpp). Beyond
+  /// 4096 sub-steps or below h_min the budget is not kept. Needs OdeSystem::kinetic_energy().
   double verlet_energy_budget = 0.0;
   double h_initial = 0.0;      ///< first trial step [s] of adaptive methods; 0 = automatic
   double h_max = 0.1;          ///< largest step [s]

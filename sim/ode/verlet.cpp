@@ -117,7 +117,12 @@ class VerletStepper final : public Stepper {
       }
       held_force(f_, fd_, work_);
       const double k_net = sys.kinetic_energy(work_);
-      offset_ += 0.25 * h_last_ * h_last_ * (k_net_ - k_net);
+      // Before the first step T_net is taken on the rung's step (no switch yet).
+      if (h_last_ == 0.0) {
+        h_last_ = h_fixed_ / substeps_;
+      } else {
+        offset_ += 0.25 * h_last_ * h_last_ * (k_net_ - k_net);
+      }
       k_net_ = k_net;
       k_gap_ = sys.kinetic_energy(f_) - k_net;
     }
@@ -126,15 +131,23 @@ class VerletStepper final : public Stepper {
 
   StepStatus step(const OdeSystem& sys, double t_limit) override {
     if (!(t_limit > t_)) return StepStatus::kOk;
-    // End of the current grid step; grid time relative to the last base point avoids
-    // accumulating round-off.
-    double t_grid = t_base_ + static_cast<double>(steps_since_base_ + 1) * h_fixed_;
-    const bool last = t_grid >= t_limit - 1e-9 * h_fixed_;
-    if (last) t_grid = t_limit;
-    if (remaining_ <= 0) remaining_ = substeps_;
+    if (remaining_ <= 0 || t_limit < t_grid_ - 1e-9 * h_fixed_) {
+      // A new grid step (or the caller moved t_limit inside the current one): its end, on
+      // the grid relative to the last base point (no accumulated round-off) or at t_limit.
+      t_grid_ = t_base_ + static_cast<double>(steps_since_base_ + 1) * h_fixed_;
+      last_ = t_grid_ >= t_limit - 1e-9 * h_fixed_;
+      if (last_) t_grid_ = t_limit;
+      // A grid step cut short takes as many sub-steps of the current rung as fit.
+      const double fit = std::ceil((t_grid_ - t_) / (h_fixed_ / substeps_) - 1e-9);
+      remaining_ = static_cast<int>(std::clamp(fit, 1.0, static_cast<double>(substeps_)));
+    }
     double dissipated = 0.0, h = 0.0, k_net = 0.0, k_gap = 0.0;
     for (;;) {
-      const double t_new = remaining_ <= 1 ? t_grid : t_ + (t_grid - t_) / remaining_;
+      double t_new = remaining_ <= 1 ? t_grid_ : t_ + (t_grid_ - t_) / remaining_;
+      if (!(t_new > t_)) {  // sub-steps below the resolution of t: the rest in one
+        t_new = t_grid_;
+        remaining_ = 1;
+      }
       h = t_new - t_;
       if (!(h > 0.0)) return StepStatus::kStepSizeCollapse;
       dissipated = kick_drift_kick(sys, h, t_new);
@@ -177,7 +190,7 @@ class VerletStepper final : public Stepper {
     if (metric_) dissipated -= 0.25 * h * h * (k_gap - k_gap_);
     // A step size other than the last one's (a rung switch, a refined retry, a grid step cut
     // short at t_limit) changes the invariant by T_net(h_last) - T_net(h) at the start point.
-    if (metric_ && h_last_ > 0.0) offset_ += 0.25 * (h_last_ * h_last_ - h * h) * k_net_;
+    if (metric_) offset_ += 0.25 * (h_last_ * h_last_ - h * h) * k_net_;
 
     y_prev_.swap(y_);
     y_.swap(y_new_);
@@ -193,8 +206,12 @@ class VerletStepper final : public Stepper {
     ++counters_.steps_accepted;
     if (--remaining_ > 0) return StepStatus::kOk;
     // At the grid point: the next grid step's rung.
-    if (budget_ > 0.0) next_rung(0.25 * h * h * k_net_);
-    if (last) {
+    // (T_net on the rung's step: the last sub-step may have been cut short.)
+    if (budget_ > 0.0) {
+      const double hr = h_fixed_ / substeps_;
+      next_rung(0.25 * hr * hr * k_net_);
+    }
+    if (last_) {
       t_base_ = t_;
       steps_since_base_ = 0;
     } else {
@@ -215,10 +232,7 @@ class VerletStepper final : public Stepper {
   SolverCounters& mutable_counters() override { return counters_; }
   bool books_dissipation() const override { return split_; }
   double booked_dissipation() const override { return dissipated_; }
-  double verlet_term() const override {
-    const double h = h_last_ > 0.0 ? h_last_ : h_fixed_ / substeps_;
-    return 0.25 * h * h * k_net_;
-  }
+  double verlet_term() const override { return 0.25 * h_last_ * h_last_ * k_net_; }
   double switching_offset() const override { return offset_; }
 
  private:
@@ -328,6 +342,8 @@ class VerletStepper final : public Stepper {
   double t_prev_ = 0.0;        ///< start of the last accepted step [s]
   double t_new_ = 0.0;         ///< end of the step in y_new_ [s]
   double t_base_ = 0.0;        ///< time the step grid counts from [s]
+  double t_grid_ = 0.0;        ///< end of the current grid step [s]
+  bool last_ = false;          ///< the current grid step ends at the caller's t_limit
   long steps_since_base_ = 0;  ///< grid steps taken on the current grid
   Vec y_, y_prev_, y_new_;
   Vec f_, f_prev_, f_new_;      ///< f at t_, t_prev_ and the new point

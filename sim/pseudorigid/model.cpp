@@ -29,8 +29,8 @@ bool SimulationOptions::validate(std::string* error) const {
   if (!(zero_length_epsilon > 0.0)) {
     return bad("zero_length_epsilon", zero_length_epsilon, "must be > 0");
   }
-  if (!(energy_tol >= 0.0) || !(energy_tol < 1.0)) {
-    return bad("energy_tol", energy_tol, "must be >= 0 (0: off) and < 1");
+  if (!(energy_tol >= 0.0) || !(energy_tol <= 0.5)) {
+    return bad("energy_tol", energy_tol, "must be >= 0 (0: off) and <= 0.5");
   }
   if (!(strain_budget > 0.0)) return bad("strain_budget", strain_budget, "must be > 0");
   if (!(penetration_budget > 0.0)) {
