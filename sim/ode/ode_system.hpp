@@ -52,6 +52,10 @@ class OdeSystem {
   /// SolverOptions::verlet_energy_budget keeps in bounds. Returns a negative number when
   /// the system has no such metric (the default).
   virtual double kinetic_energy(const Vec& /*y*/) const { return -1.0; }
+  /// The momentum entries come in consecutive blocks of this many (a point mass's three
+  /// Cartesian components) that belong together under rotations: the symplectic stepper's
+  /// held-force projection acts per block, so it does not depend on the frame.
+  virtual int momentum_block() const { return 1; }
 
   /// Optional dissipation split for the symplectic stepper (needs the mechanical split): the
   /// velocity-dependent dissipative forces (dampers, friction, drag) leave the kicks and act

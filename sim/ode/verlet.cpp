@@ -29,8 +29,8 @@
 // (kick force F, dissipative force -F, no motion) books every change of h^2 |F|^2 / 8m as
 // dissipation, though friction on a held foot does no work. The stepper moves the
 // difference between T and T_net = sum h^2 |F + a F_d|^2 / 8m from D to T at every point
-// (F_d: the closing half step's mean dissipative force; a in [0, 1] per component, the
-// share of F_d that cancels F): the difference telescopes, so E - T_net + D stays exactly
+// (F_d: the closing half step's mean dissipative force; a in [0, 1] per mass (momentum block), the
+// share of F_d that cancels F, per mass): the difference telescopes, so E - T_net + D stays exactly
 // constant, T_net is zero for a held foot and T in free motion or where a damper acts along
 // F (a damper stopping an impact), and D changes only by a bounded O(h^2) term.
 //
@@ -86,6 +86,7 @@ class VerletStepper final : public Stepper {
     }
     sys.momentum_mask(mask_);
     split_ = sys.has_dissipation_split();
+    block_ = std::max(1, sys.momentum_block());
     const bool has_metric = sys.kinetic_energy(y) >= 0.0;
     if (budget_ > 0.0 && !has_metric) {
       throw std::invalid_argument(
@@ -268,15 +269,25 @@ class VerletStepper final : public Stepper {
     return dissipated;
   }
 
-  /// The net force f + a fd per momentum component, a in [0, 1] as small in magnitude as the
-  /// dissipative force fd allows: fd cancels the part of f it holds (friction holding a foot
-  /// against a spring) and is ignored where it acts along f (a damper stopping an impact).
+  /// The net force f + a fd per momentum block (a mass's three components; see
+  /// OdeSystem::momentum_block), a in [0, 1] making |f + a fd| as small as the dissipative
+  /// force fd allows: fd cancels the part of f it holds (friction holding a foot against a
+  /// spring) and is ignored where it acts along f (a damper stopping an impact). Position
+  /// entries of the result are not used.
   void held_force(const Vec& f, const Vec& fd, Vec& out) const {
+    out = f;
     const Eigen::Index n = f.size();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double d = fd[i];
-      const double a = d != 0.0 ? std::clamp(-f[i] / d, 0.0, 1.0) : 0.0;
-      out[i] = f[i] + a * d;
+    for (Eigen::Index i = 0; i + block_ <= n;) {
+      if (mask_[i] == 0.0) {
+        ++i;
+        continue;
+      }
+      const auto fb = f.segment(i, block_);
+      const auto db = fd.segment(i, block_);
+      const double dd = db.squaredNorm();
+      const double a = dd > 0.0 ? std::clamp(-fb.dot(db) / dd, 0.0, 1.0) : 0.0;
+      out.segment(i, block_) += a * db;
+      i += block_;
     }
   }
 
@@ -354,6 +365,7 @@ class VerletStepper final : public Stepper {
   Vec mask_;                    ///< 1 on momentum states, 0 on positions
   Vec q_mask_;                  ///< 1 - mask_
   bool split_ = false;          ///< the system's dissipation split is applied
+  int block_ = 1;               ///< momentum entries per rotation block
   bool metric_ = false;         ///< T_net is tracked (a metric, and a split or a budget)
   double k_net_ = 0.0;          ///< kinetic energy of the net force at t_ [J s^2/... per h^2/4]
   double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_

@@ -76,6 +76,7 @@ class SolverView final : public ode::OdeSystem {
     sys_.position_rate(y, dydt);
   }
   double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
+  int momentum_block() const override { return sys_.momentum_block(); }
   bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.conservative_rhs(t, y, dydt);

@@ -44,6 +44,7 @@ class MechanismSystem final : public ode::OdeSystem {
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
   /// sum |p_j|^2 / 2 m_j [J] over the momentum entries of y.
   double kinetic_energy(const ode::Vec& y) const override;
+  int momentum_block() const override { return 3; }
 
   /// Dissipation split (method verlet): the dampers, friction and drag of connections (not
   /// actuators) and surfaces leave the kicks. Offered unless a dissipative element acts on a
