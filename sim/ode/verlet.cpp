@@ -29,10 +29,10 @@
 // (kick force F, dissipative force -F, no motion) books every change of h^2 |F|^2 / 8m as
 // dissipation, though friction on a held foot does no work. The stepper moves the
 // difference between T and T_net = sum h^2 |F + a F_d|^2 / 8m from D to T at every point
-// (F_d: the closing half step's mean dissipative force; a in [0, 1] per mass (momentum block), the
-// share of F_d that cancels F, per mass): the difference telescopes, so E - T_net + D stays exactly
-// constant, T_net is zero for a held foot and T in free motion or where a damper acts along
-// F (a damper stopping an impact), and D changes only by a bounded O(h^2) term.
+// (F_d: the closing half step's mean dissipative force; a in [0, 1] per mass, the share of
+// F_d that cancels F): the difference telescopes, so E - T_net + D stays exactly constant, T_net is
+// zero for a held foot and T in free motion or where a damper acts along F (a damper stopping an
+// impact), and D changes only by a bounded O(h^2) term.
 //
 // Energy budget (SolverOptions::verlet_energy_budget > 0): h_fixed becomes the grid step,
 // taken as 2^j equal sub-steps. The sampled energy balance departs from its exact value by
