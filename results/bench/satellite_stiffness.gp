@@ -9,45 +9,45 @@ set format y '10^{%L}'
 set grid
 set key outside right
 $d0 << EOD
-10000 0.0398608
-100000 0.162493
-1e+06 0.548454
-1e+07 1.82526
-1e+08 5.78325
+10000 0.038073
+100000 0.156029
+1e+06 0.534488
+1e+07 1.78051
+1e+08 5.63821
 EOD
 $d1 << EOD
-10000 0.00487838
-100000 0.0163589
-1e+06 0.0569494
-1e+07 0.182551
-1e+08 0.587697
+10000 0.0045496
+100000 0.0154146
+1e+06 0.0528958
+1e+07 0.169307
+1e+08 0.524835
 EOD
 $d2 << EOD
-10000 0.0553706
-100000 0.126888
-1e+06 0.178681
-1e+07 0.120916
-1e+08 0.200232
+10000 0.0521883
+100000 0.119373
+1e+06 0.159219
+1e+07 0.11196
+1e+08 0.178059
 EOD
 $d3 << EOD
-10000 0.0212202
-100000 0.0337885
-1e+06 0.0527921
-1e+07 0.0870108
-1e+08 0.167417
+10000 0.0207745
+100000 0.0312492
+1e+06 0.0495878
+1e+07 0.079795
+1e+08 0.151451
 EOD
 $d4 << EOD
-10000 0.0419617
-100000 0.0940769
-1e+06 0.19308
-1e+07 0.407178
-1e+08 0.744411
+10000 0.0388876
+100000 0.0832386
+1e+06 0.177342
+1e+07 0.369226
+1e+08 0.67566
 EOD
 $d5 << EOD
-10000 0.00155104
-100000 0.00493888
-1e+06 0.0155388
-1e+07 0.0512452
-1e+08 0.154473
+10000 0.00150206
+100000 0.00454187
+1e+06 0.0138464
+1e+07 0.0435408
+1e+08 0.132718
 EOD
 plot $d0 using 1:2 with linespoints title 'CVODE BDF (dense_analytic)' noenhanced, $d1 using 1:2 with linespoints title 'dopri5 (state norm)' noenhanced, $d2 using 1:2 with linespoints title 'radau5 (state norm)' noenhanced, $d3 using 1:2 with linespoints title 'rodas4 (body norm)' noenhanced, $d4 using 1:2 with linespoints title 'rodas4 (state norm)' noenhanced, $d5 using 1:2 with linespoints title 'verlet (state norm)' noenhanced
