@@ -116,8 +116,8 @@ class VerletStepper final : public Stepper {
         sys.dissipate(t_, 0.5 * h, y_, y_new_);
         fd_ = (2.0 / h) * (y_new_ - y_ref_);
       }
-      held_force(f_, fd_, work_);
-      const double k_net = sys.kinetic_energy(work_);
+      double k_net = 0.0, k_gap = 0.0;
+      net_terms(sys, f_, fd_, &k_net, &k_gap);
       // Before the first step T_net is taken on the rung's step (no switch yet).
       if (h_last_ == 0.0) {
         h_last_ = h_fixed_ / substeps_;
@@ -125,7 +125,7 @@ class VerletStepper final : public Stepper {
         offset_ += 0.25 * h_last_ * h_last_ * (k_net_ - k_net);
       }
       k_net_ = k_net;
-      k_gap_ = sys.kinetic_energy(f_) - k_net;
+      k_gap_ = k_gap;
     }
     ++counters_.rhs_evaluations;
   }
@@ -157,16 +157,7 @@ class VerletStepper final : public Stepper {
         return StepStatus::kNonFinite;
       }
       if (!metric_) break;
-      // Kinetic energies of the net force (kicks' plus closing dissipative) and of the kicks'
-      // force alone at the new point, per unit h^2 / 4.
-      if ((fd_new_.array() == 0.0).all()) {  // nothing dissipative acted: T_net = T
-        k_net = sys.kinetic_energy(f_new_);
-        k_gap = 0.0;
-      } else {
-        held_force(f_new_, fd_new_, work_);
-        k_net = sys.kinetic_energy(work_);
-        k_gap = sys.kinetic_energy(f_new_) - k_net;
-      }
+      net_terms(sys, f_new_, fd_new_, &k_net, &k_gap);
       const double term = 0.25 * h * h * k_net;
       if (!(budget_ > 0.0) || !(term > budget_) || substeps_ >= kMaxSubsteps || h <= h_min_) {
         break;
@@ -186,7 +177,7 @@ class VerletStepper final : public Stepper {
     // the kicks' forces' term, so a foot held by friction against a spring (kick force F,
     // dissipative force -F, no motion) books the changes of h^2 |F|^2 / 8m as dissipation.
     // Moving the difference of the two terms at the step's ends from D to T (it telescopes)
-    // leaves E - T_net + D constant instead, T_net = sum h^2 |F + F_d|^2 / 8m with F_d the
+    // leaves E - T_net + D constant instead, T_net = sum h^2 |F + a F_d|^2 / 8m with F_d the
     // closing half step's mean dissipative force: zero for a held foot, T in free motion.
     if (metric_) dissipated -= 0.25 * h * h * (k_gap - k_gap_);
     // A step size other than the last one's (a rung switch, a refined retry, a grid step cut
@@ -291,6 +282,19 @@ class VerletStepper final : public Stepper {
     }
   }
 
+  /// The kinetic energies [N^2/kg] of the held force f + a fd (*k_net; T_net = h^2/4 of it) and
+  /// of f alone minus that (*k_gap) at a point with kicks' force f and dissipative force fd.
+  void net_terms(const OdeSystem& sys, const Vec& f, const Vec& fd, double* k_net, double* k_gap) {
+    if ((fd.array() == 0.0).all()) {  // nothing dissipative acted: T_net = T
+      *k_net = sys.kinetic_energy(f);
+      *k_gap = 0.0;
+      return;
+    }
+    held_force(f, fd, work_);
+    *k_net = sys.kinetic_energy(work_);
+    *k_gap = sys.kinetic_energy(f) - *k_net;
+  }
+
   /// Chooses the rung of the next grid step at a grid point whose T_net on the current rung
   /// is `term` [J]; a switch from k to k' sub-steps changes E - T_net + D by
   /// term (1 - (k / k')^2).
@@ -367,8 +371,8 @@ class VerletStepper final : public Stepper {
   bool split_ = false;          ///< the system's dissipation split is applied
   int block_ = 1;               ///< momentum entries per rotation block
   bool metric_ = false;         ///< T_net is tracked (a metric, and a split or a budget)
-  double k_net_ = 0.0;          ///< kinetic energy of the net force at t_ [J s^2/... per h^2/4]
-  double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_
+  double k_net_ = 0.0;          ///< kinetic energy of the held force at t_ [N^2/kg]
+  double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_ [N^2/kg]
   int grid_steps_at_rung_ = 0;  ///< grid steps taken since the rung last changed
   double h_last_ = 0.0;         ///< size of the last accepted step [s]
   double offset_ = 0.0;         ///< accumulated change of E - T_net + D at step-size switches [J]
