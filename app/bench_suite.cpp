@@ -16,6 +16,7 @@
 #include "sim/reduced/stride_fit.hpp"
 #include "sim/reduced/stride_map.hpp"
 #include "sim/robot/robot_simulator.hpp"
+#include "sim/simulate.hpp"
 // The satellite scene is shared by the tests, bench_pseudorigid and this bench.
 #include "tests/pseudorigid/scenes.hpp"
 
@@ -150,7 +151,7 @@ HopperRun run_hopper(const scene::Scene& s, int repeat) {
   std::vector<double> walls, cpus;
   for (int i = 0; i < repeat; ++i) {
     const double c0 = thread_cpu();
-    r.result = reduced::simulate(s);
+    r.result = simulate(s).run;
     cpus.push_back(thread_cpu() - c0);
     walls.push_back(r.result.cost.wall_time);
     if (r.result.status != reduced::RunStatus::kCompleted) break;
@@ -289,7 +290,7 @@ std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c) {
   scene::Scene ref_s = hopper_scene(c, duration);
   ref_s.simulation.solver.method = Method::kDopri5;
   ref_s.simulation.solver.rtol = ref_s.simulation.solver.atol = 1e-13;
-  const reduced::RunResult ref = reduced::simulate(ref_s);
+  const reduced::RunResult ref = simulate(ref_s).run;
   std::vector<WorkPoint> out;
   // The hopper's flights are nearly polynomial in time, so RK4 reaches the
   // reference's accuracy (1e-12 m) already at 2 ms: its steps are 10x larger.
@@ -382,16 +383,11 @@ std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points) {
 
 namespace {
 
-reduced::RunResult simulate_reduced(const scene::Scene& s) {
-  reduced::RunOptions o;
+// A run in the scene's model, records only (the stride-map fit's simulator).
+reduced::RunResult simulate_records(const scene::Scene& s) {
+  RunOptions o;
   o.record_trajectory = false;
-  return reduced::simulate(s, o);
-}
-
-reduced::RunResult simulate_full(const scene::Scene& s) {
-  robot::RobotRunOptions o;
-  o.record_trajectory = false;
-  return robot::simulate(s, o).run;
+  return simulate(s, o).run;
 }
 
 void set_fit(FidelityPoint& p, const reduced::StrideFitResult& f) {
@@ -411,11 +407,11 @@ FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   p.t_end = s.simulation.duration;
   std::vector<double> walls, cpus;
   reduced::RunResult r;
-  reduced::RunOptions opts;
+  RunOptions opts;
   opts.record_trajectory = false;
   for (int i = 0; i < c.repeat; ++i) {
     const double c0 = thread_cpu();
-    r = reduced::simulate(s, opts);
+    r = simulate(s, opts).run;
     cpus.push_back(thread_cpu() - c0);
     walls.push_back(r.cost.wall_time);
   }
@@ -445,7 +441,7 @@ FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   p.stable = st.ok && st.spectral_radius < 1.0;
   if (!st.ok) p.note = "no periodic orbit: " + st.reason;
   // The estimator the pseudo-rigid rung relies on, checked here against the stride map.
-  set_fit(p, reduced::estimate_stride_map(s, simulate_reduced));
+  set_fit(p, reduced::estimate_stride_map(s, simulate_records));
   return p;
 }
 
@@ -474,10 +470,10 @@ FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   // (measured); "auto" (1e7 N/m) agrees too but costs 2.5x more.
   sp.pseudo_rigid.internal_stiffness = 1e6;
   sp.pseudo_rigid.internal_auto = false;
-  robot::RobotRunOptions opts;
+  RunOptions opts;
   opts.record_trajectory = false;
   const double c0 = thread_cpu();
-  const robot::RobotRunResult r = robot::simulate(sp, opts);
+  const RunResult r = simulate(sp, opts);
   p.cpu_s = thread_cpu() - c0;
   p.wall_s = r.run.cost.wall_time;
   p.status = std::string(reduced::to_string(r.run.status));
@@ -500,7 +496,7 @@ FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   p.mean_apex = na ? apex / na : 0.0;
   p.note = "one run; force legs; internal k " + std::to_string(r.monitors.internal_stiffness) +
            " N/m; spectral radius fitted to 4 perturbed runs of 6 s";
-  set_fit(p, reduced::estimate_stride_map(sp, simulate_full));
+  set_fit(p, reduced::estimate_stride_map(sp, simulate_records));
   p.spectral_radius = p.spectral_radius_fit;
   p.spectral_radius_method = "fit";
   p.stable = r.run.status == reduced::RunStatus::kCompleted && p.fit_ok && p.spectral_radius < 1.0;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
 #include "sim/io/build_info.hpp"
@@ -66,7 +67,45 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
   return cmd;
 }
 
+namespace {
+
+// A study with "stages": each stage in its own model, from the previous stage's best.
+int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
+  const std::string dir = std::filesystem::path(args.study_path).parent_path().string();
+  const optimize::StagedStudy study =
+      optimize::parse_staged_study(doc, args.study_path, dir.empty() ? "." : dir);
+  optimize::StudyRunOptions opt;
+  opt.threads = thread_count(args.threads);
+  opt.resume = args.resume;
+  opt.out_dir = args.out_dir;
+  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+  opt.stop_flag = &g_stop;
+  g_stop.store(false);
+  std::signal(SIGINT, on_sigint);
+  const optimize::StagedOutcome o = optimize::run_staged_study(study, opt);
+  std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet) {
+    for (const auto& s : o.stages) {
+      std::printf("  stage %-16s %-13s cost %.6g -> %.6g%s\n", s.name.c_str(), s.model.c_str(),
+                  s.design.value("initial_cost", 0.0), s.design.value("cost", 0.0),
+                  s.skipped ? " (finished earlier)" : "");
+    }
+    if (o.ok) {
+      std::printf("%s: fidelity gap in the %s model: first stage's design cost %.6g, final %.6g\n",
+                  study.name.c_str(), o.stages.back().model.c_str(), o.gap_first.cost,
+                  o.final_best.cost);
+      std::printf("  results: %s/ (design.json, summary.md, stages/)\n", o.out_dir.c_str());
+    }
+  }
+  return o.ok ? 0 : 1;
+}
+
+}  // namespace
+
 int run_optimize(const OptimizeArgs& args) {
+  nlohmann::json doc = io::read_json_file(args.study_path);
+  for (const auto& o : args.overrides) io::apply_override(doc, o);
+  if (optimize::is_staged_study(doc)) return run_staged(args, doc);
   const optimize::Study study = optimize::load_study(args.study_path, args.overrides);
   optimize::StudyRunOptions opt;
   opt.threads = thread_count(args.threads);

@@ -7,14 +7,11 @@
 #include "sim/io/json_reader.hpp"
 #include "sim/io/mechanism_loader.hpp"
 #include "sim/io/mechanism_output.hpp"
-#include "sim/io/robot_output.hpp"
-#include "sim/io/run_output.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/io/simulation_output.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
-#include "sim/reduced/simulator.hpp"
-#include "sim/robot/fidelity.hpp"
-#include "sim/robot/robot_simulator.hpp"
+#include "sim/simulate.hpp"
 
 namespace pronk::app {
 
@@ -69,42 +66,37 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }
 
-/// A robot scene in the full (pseudo-rigid) model.
-int run_robot_full(const SimulateArgs& args, const scene::Scene& scene) {
-  robot::RobotRunResult r;
-  try {
-    r = robot::simulate(scene);
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError(args.scene_path, "/pseudo_rigid", "a robot the full model can build",
-                         e.what());
-  }
-  const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
-  const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
-  // The same robot in the pulse model (milliseconds): the fidelity discrepancy.
-  scene::Scene pulse = scene;
-  pulse.model = scene::ModelKind::kPulse;
-  const robot::FidelityDiscrepancy fd =
-      robot::compare_strides(reduced::simulate(pulse, {false, true, false}), r.run);
-  io::write_robot_outputs(dir, scene, r, metrics, &fd);
-  if (!args.quiet) {
-    const auto& c = r.run.cost.solver;
+// One line per fact of a robot run, in any model.
+void print_robot_run(const scene::Scene& scene, const RunResult& r,
+                     const reduced::RunMetrics& metrics, const std::string& dir) {
+  const auto& c = r.run.cost.solver;
+  std::printf("%s (%s model): %s, %s\n", scene.name.c_str(),
+              std::string(scene::to_string(scene.model)).c_str(),
+              std::string(reduced::to_string(r.run.status)).c_str(), r.run.reason.c_str());
+  std::printf("  strides %ld, final error x %.4f m, y %.4f m, roll %.3f deg, pitch %.3f deg\n",
+              metrics.strides, metrics.final_x_error, metrics.final_y_error,
+              metrics.final_roll * 180 / M_PI, metrics.final_pitch * 180 / M_PI);
+  std::printf("  apex error after first stride: max %.3g m; duty cycle mean %.3f max %.3f\n",
+              metrics.max_apex_error, metrics.mean_duty, metrics.max_duty);
+  if (r.full_model()) {
     const auto& m = r.monitors;
-    std::printf("%s (pseudo_rigid model): %s, %s\n", scene.name.c_str(),
-                std::string(reduced::to_string(r.run.status)).c_str(), r.run.reason.c_str());
-    std::printf("  strides %ld, final error x %.4f m, y %.4f m, roll %.3f deg, pitch %.3f deg\n",
-                metrics.strides, metrics.final_x_error, metrics.final_y_error,
-                metrics.final_roll * 180 / M_PI, metrics.final_pitch * 180 / M_PI);
     std::printf(
-        "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g m, "
-        "max slip %.3g m\n",
+        "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g "
+        "m, max slip %.3g m\n",
         m.energy_drift, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, m.max_strain,
         m.max_penetration, m.max_slip);
     std::printf("  cost: %ld steps (%ld rejected), %ld RHS, %ld Jacobians, %ld LU, %.3f ms\n",
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
                 c.lu_factorizations, r.run.cost.wall_time * 1e3);
-    std::printf("  outputs in %s/\n", dir.c_str());
+  } else {
+    std::printf("  cost: %ld steps (%ld rejected), %ld RHS evaluations, %ld events, %.3f ms\n",
+                c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.events,
+                r.run.cost.wall_time * 1e3);
   }
-  return r.run.status == reduced::RunStatus::kCompleted ? 0 : 1;
+  for (const auto& [id, count] : r.run.warnings) {
+    std::printf("  warning: %s (%ld)\n", id.c_str(), count);
+  }
+  std::printf("  outputs in %s/\n", dir.c_str());
 }
 
 }  // namespace
@@ -120,30 +112,18 @@ int run_simulate(const SimulateArgs& args) {
   }
   if (!args.model.empty()) io::apply_override(doc, "/model=\"" + args.model + "\"");
   const scene::Scene scene = io::parse_scene(doc, args.scene_path);
-  if (scene.model == scene::ModelKind::kPseudoRigid) return run_robot_full(args, scene);
-  const reduced::RunResult run = reduced::simulate(scene);
-  const reduced::RunMetrics metrics = reduced::compute_metrics(scene, run);
-  const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
-  io::write_run_outputs(dir, scene, run, metrics);
-  if (!args.quiet) {
-    const auto& c = run.cost.solver;
-    std::printf("%s (%s model): %s, %s\n", scene.name.c_str(),
-                std::string(scene::to_string(scene.model)).c_str(),
-                std::string(reduced::to_string(run.status)).c_str(), run.reason.c_str());
-    std::printf("  strides %ld, final error x %.4f m, y %.4f m, roll %.3f deg, pitch %.3f deg\n",
-                metrics.strides, metrics.final_x_error, metrics.final_y_error,
-                metrics.final_roll * 180 / M_PI, metrics.final_pitch * 180 / M_PI);
-    std::printf("  apex error after first stride: max %.3g m; duty cycle mean %.3f max %.3f\n",
-                metrics.max_apex_error, metrics.mean_duty, metrics.max_duty);
-    std::printf("  cost: %ld steps (%ld rejected), %ld RHS evaluations, %ld events, %.3f ms\n",
-                c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.events,
-                run.cost.wall_time * 1e3);
-    for (const auto& [id, count] : run.warnings) {
-      std::printf("  warning: %s (%ld)\n", id.c_str(), count);
-    }
-    std::printf("  outputs in %s/\n", dir.c_str());
+  RunResult r;
+  try {
+    r = simulate(scene);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(args.scene_path, "/pseudo_rigid", "a robot the full model can build",
+                         e.what());
   }
-  return run.status == reduced::RunStatus::kCompleted ? 0 : 1;
+  const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
+  const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
+  io::write_simulation_outputs(dir, scene, r, metrics);
+  if (!args.quiet) print_robot_run(scene, r, metrics, dir);
+  return r.run.status == reduced::RunStatus::kCompleted ? 0 : 1;
 }
 
 }  // namespace pronk::app

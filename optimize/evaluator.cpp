@@ -6,7 +6,7 @@
 
 #include "sim/io/input_error.hpp"
 #include "sim/io/scene_loader.hpp"
-#include "sim/reduced/simulator.hpp"
+#include "sim/simulate.hpp"
 
 namespace pronk::optimize {
 
@@ -143,28 +143,28 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
   const long n = static_cast<long>(config_.scenarios.scenarios.size());
   ev.scenarios.resize(static_cast<size_t>(n));
   std::vector<std::string> errors(static_cast<size_t>(n) + 1);
-  reduced::StabilityResult stab;
+  StabilityEstimate stab;
   std::vector<long> strides(static_cast<size_t>(n), 0);
   auto job = [&](long i) {
     try {
       // Job 0 is the stability analysis (the longest: start it first).
       if (i == 0) {
-        if (config_.stability) stab = reduced::analyze_stability(base);
+        if (config_.stability) stab = analyze_stability(base);
         return;
       }
       --i;
       const Scenario& sc = config_.scenarios.scenarios[static_cast<size_t>(i)];
       const scene::Scene s = apply_scenario(base, sc, config_.scenarios);
-      reduced::RunOptions opts;
+      RunOptions opts;
       opts.record_trajectory = false;
-      const reduced::RunResult r = reduced::simulate(s, opts);
+      const RunResult r = simulate(s, opts);
       ScenarioOutcome& out = ev.scenarios[static_cast<size_t>(i)];
       out.name = sc.name;
-      out.status = std::string(reduced::to_string(r.status));
-      out.reason = r.reason;
+      out.status = std::string(reduced::to_string(r.run.status));
+      out.reason = r.run.reason;
       out.metrics = scenario_metrics(s, r, config_.fall_penalty, config_.settle);
-      out.strides = r.cost.touchdowns;
-      strides[static_cast<size_t>(i)] = r.cost.touchdowns;
+      out.strides = r.run.cost.touchdowns;
+      strides[static_cast<size_t>(i)] = r.run.cost.touchdowns;
     } catch (const std::exception& e) {
       errors[static_cast<size_t>(i)] = e.what();
     }
@@ -177,11 +177,13 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
   for (const auto& e : errors) {
     if (!e.empty()) return fail("internal error: " + e);
   }
-  ev.simulations = n + (config_.stability ? stab.map_evaluations : 0);
+  ev.model = base.model;
+  ev.simulations = n + (config_.stability ? stab.simulations : 0);
   for (long s : strides) ev.strides += s;
-  ev.strides += config_.stability ? stab.map_evaluations : 0;
+  ev.strides += config_.stability ? stab.strides : 0;
   ev.spectral_radius = config_.stability ? stab.spectral_radius : 0.0;
   ev.stability_reason = stab.reason;
+  ev.stability_method = config_.stability ? stab.method : "";
   for (auto& o : ev.scenarios) o.metrics["spectral_radius"] = ev.spectral_radius;
 
   // Aggregation: the mean of every metric, plus each objective/constraint aggregate.
@@ -191,7 +193,7 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
     if (v.empty()) v.push_back(metric == "spectral_radius" ? ev.spectral_radius : 0.0);
     return v;
   };
-  for (const auto& name : metric_names())
+  for (const auto& name : metric_names(base.model))
     ev.aggregated[name] = aggregate(column(name), Aggregate::kMean, 0);
   ev.cost = 0.0;
   for (const auto& t : config_.objective) {

@@ -55,10 +55,13 @@ struct Evaluation {
   std::vector<ScenarioOutcome> scenarios;
   double spectral_radius = 0.0;
   std::string stability_reason;  ///< why no orbit was found, if so
-  long simulations = 0;          ///< scenario runs + stride-map runs
-  long strides = 0;              ///< simulated strides
-  double wall_time = 0.0;        ///< [s]
-  double binding_time = 0.0;     ///< [s] spent binding parameters and building the scene
+  /// How the spectral radius was obtained (StabilityEstimate::method); "" without one.
+  std::string stability_method;
+  scene::ModelKind model = scene::ModelKind::kImpulse;  ///< the model the scenarios ran in
+  long simulations = 0;                                 ///< scenario runs + stride-map runs
+  long strides = 0;                                     ///< simulated strides
+  double wall_time = 0.0;                               ///< [s]
+  double binding_time = 0.0;  ///< [s] spent binding parameters and building the scene
 };
 
 class Evaluator final : public Problem {

@@ -7,7 +7,9 @@
 
 namespace pronk::optimize {
 
-const std::vector<std::string>& metric_names() {
+namespace {
+
+const std::vector<std::string>& reduced_metric_names() {
   static const std::vector<std::string> names = {
       "hop_height_error",  "x_error",    "y_error",        "attitude_error", "final_error",
       "settle_strides",    "stabilized", "duty_max",       "duty_mean",      "peak_leg_force",
@@ -15,8 +17,55 @@ const std::vector<std::string>& metric_names() {
   return names;
 }
 
+const std::vector<std::string>& full_metric_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = reduced_metric_names();
+    for (const char* k : {"energy_drift", "max_strain", "max_penetration", "max_slip",
+                          "peak_actuator_force", "actuator_work_per_m", "cost_of_transport"}) {
+      n.emplace_back(k);
+    }
+    return n;
+  }();
+  return names;
+}
+
+// The full model's own metrics: its accuracy monitors and actuator costs.
+void add_full_metrics(const scene::Scene& scene, const RunResult& r, MetricMap& out) {
+  const auto& m = r.monitors;
+  out["energy_drift"] = m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0;
+  out["max_strain"] = m.max_strain;
+  out["max_penetration"] = m.max_penetration;
+  out["max_slip"] = m.max_slip;
+  double peak = 0.0;
+  for (const auto& stride : r.stride_actuator_force)
+    for (double f : stride) peak = std::max(peak, std::abs(f));
+  out["peak_actuator_force"] = peak;
+  const Eigen::Vector2d travel = (r.run.final_position - scene.initial.position).head<2>();
+  const double per_m = m.positive_actuator_work / std::max(travel.norm(), 0.01);
+  out["actuator_work_per_m"] = per_m;
+  double mass = scene.body.mass;
+  if (scene.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring)
+    mass += scene.pseudo_rigid.foot_mass * static_cast<double>(scene.legs.hips.size());
+  out["cost_of_transport"] = per_m / (mass * scene.gravity);
+  for (const char* k : {"energy_drift", "max_strain", "max_penetration", "max_slip",
+                        "peak_actuator_force", "actuator_work_per_m", "cost_of_transport"}) {
+    out[k] = std::min(out[k], 1e9);  // a diverged run's monitors are huge, not infinite
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& metric_names(scene::ModelKind model) {
+  return model == scene::ModelKind::kPseudoRigid ? full_metric_names() : reduced_metric_names();
+}
+
 bool is_metric(const std::string& name) {
-  const auto& n = metric_names();
+  const auto& n = full_metric_names();
+  return std::find(n.begin(), n.end(), name) != n.end();
+}
+
+bool is_metric(const std::string& name, scene::ModelKind model) {
+  const auto& n = metric_names(model);
   return std::find(n.begin(), n.end(), name) != n.end();
 }
 
@@ -32,8 +81,9 @@ std::string_view to_string(Aggregate a) {
   return "?";
 }
 
-MetricMap scenario_metrics(const scene::Scene& scene, const reduced::RunResult& run,
-                           double fall_penalty, const reduced::SettleCriteria& criteria) {
+MetricMap scenario_metrics(const scene::Scene& scene, const RunResult& result, double fall_penalty,
+                           const reduced::SettleCriteria& criteria) {
+  const reduced::RunResult& run = result.run;
   const reduced::RunMetrics m = reduced::compute_metrics(scene, run, criteria);
   const double target_apex = scene.legs.length + scene.controller.hop_height;
   double apex2 = 0, x2 = 0, y2 = 0, att2 = 0;
@@ -67,6 +117,7 @@ MetricMap scenario_metrics(const scene::Scene& scene, const reduced::RunResult& 
   out["effort_per_stride"] = m.mean_impulse_per_stride;
   out["fell"] = fell ? 1.0 : 0.0;
   out["spectral_radius"] = 0.0;  // filled per design by the evaluator
+  if (result.full_model()) add_full_metrics(scene, result, out);
   if (fell) {
     // At least the penalty, more the earlier it fell: a fallen design still
     // tells an optimizer which way is better.

@@ -9,6 +9,7 @@
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/run_result.hpp"
 #include "sim/scene/scene.hpp"
+#include "sim/simulate.hpp"
 
 namespace pronk::optimize {
 
@@ -24,15 +25,28 @@ namespace pronk::optimize {
 ///   effort_per_stride  mean delivered |P| per stride [N s]
 ///   fell               1 if the run fell or diverged, else 0
 ///   spectral_radius    of the stride map at the periodic orbit (a property of the design)
+/// The full (pseudo-rigid) model adds its accuracy monitors and actuator costs:
+///   energy_drift       max |energy balance(t) - balance(0)| / energy scale [-]
+///   max_strain         largest internal spring strain [-]
+///   max_penetration    deepest ground penetration or slide violation [m]
+///   max_slip           largest horizontal foot travel within one stance [m]
+///   peak_actuator_force  largest |leg actuator force| over the strides [N]
+///   actuator_work_per_m  positive actuator work (legs and hip placement) per metre of
+///                      horizontal CoM travel (at least 1 cm) [J/m]
+///   cost_of_transport  actuator_work_per_m / (M g) [-]
 /// A run that fell gets its error metrics raised to at least
 /// fall_penalty * (2 - t_fall / duration): between 1x and 2x the penalty, more
 /// for an earlier fall.
-const std::vector<std::string>& metric_names();
+/// The metrics a model reports (the reduced models' list, plus the full model's own).
+const std::vector<std::string>& metric_names(scene::ModelKind model);
+/// A metric of some model.
 bool is_metric(const std::string& name);
+/// A metric `model` reports.
+bool is_metric(const std::string& name, scene::ModelKind model);
 
 using MetricMap = std::map<std::string, double>;
 
-MetricMap scenario_metrics(const scene::Scene& scene, const reduced::RunResult& run,
+MetricMap scenario_metrics(const scene::Scene& scene, const RunResult& result,
                            double fall_penalty = 1.0, const reduced::SettleCriteria& criteria = {});
 
 enum class Aggregate { kMean, kWorst, kCvar };

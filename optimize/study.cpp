@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "sim/io/json_reader.hpp"
+#include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
 
 namespace pronk::optimize {
@@ -34,7 +35,8 @@ std::string metric_of(io::JsonReader& r) {
   const std::string m = r.string_or("metric", "");
   if (!is_metric(m)) {
     std::string known;
-    for (const auto& n : metric_names()) known += (known.empty() ? "" : ", ") + n;
+    for (const auto& n : metric_names(scene::ModelKind::kPseudoRigid))
+      known += (known.empty() ? "" : ", ") + n;
     throw r.error("metric", "a metric name (" + known + ")", "\"" + m + "\"");
   }
   return m;
@@ -109,6 +111,65 @@ void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
     throw s.error("", "at least one scenario (\"list\" or \"random\")", "none");
 }
 
+// True when `pointer` is `prefix` or lies under it ("/pulse" covers "/pulse/duration").
+bool under(const std::string& pointer, const std::string& prefix) {
+  return pointer == prefix ||
+         (pointer.size() > prefix.size() && pointer.compare(0, prefix.size(), prefix) == 0 &&
+          pointer[prefix.size()] == '/');
+}
+
+// One design parameter, bound to a number of the resolved scene that its model uses.
+Parameter parse_parameter(io::JsonReader& p, const json& resolved,
+                          const std::vector<std::string>& unused, scene::ModelKind model) {
+  Parameter par;
+  par.name = p.string_or("name", "");
+  if (par.name.empty()) throw p.error("name", "a parameter name", "nothing");
+  par.pointer = p.string_or("pointer", "");
+  json::json_pointer jp;
+  try {
+    jp = json::json_pointer(par.pointer);
+  } catch (const json::exception& e) {
+    throw p.error("pointer", "a JSON Pointer into the scene", "\"" + par.pointer + "\"");
+  }
+  // The resolved scene holds every number explicitly: the pointer must name one.
+  if (par.pointer.empty() || !resolved.contains(jp) || !resolved.at(jp).is_number()) {
+    throw p.error("pointer", "a pointer to a number of the scene format (see scene.resolved.json)",
+                  "\"" + par.pointer + "\", which names no number of a scene");
+  }
+  // Tuning a number the model ignores would give a flat cost surface: refuse it.
+  for (const std::string& u : unused) {
+    if (under(par.pointer, u)) {
+      throw p.error("pointer",
+                    "a setting the " + std::string(scene::to_string(model)) +
+                        " model uses (parameter \"" + par.name + "\")",
+                    "\"" + par.pointer + "\", which that model ignores (" + u + ")");
+    }
+  }
+  par.lower = p.number("lower");
+  par.upper = p.number("upper");
+  if (!(par.upper > par.lower))
+    throw p.error("upper", "a number > lower", std::to_string(par.upper));
+  par.log_scale = p.boolean_or("log", false);
+  if (par.log_scale && !(par.lower > 0)) {
+    throw p.error("lower", "a positive lower bound for a log-scaled parameter",
+                  std::to_string(par.lower));
+  }
+  // The start is the scene's own value (its default when the scene does not set it),
+  // unless "initial" says otherwise; a start outside the bounds is an error, not a clamp.
+  const double current = resolved.at(jp).get<double>();
+  if (!p.has("initial") && !(current >= par.lower && current <= par.upper)) {
+    throw p.error("initial",
+                  "a start within [lower, upper] for parameter \"" + par.name +
+                      "\": the scene's value is outside, so set \"initial\" or widen the bounds",
+                  "no \"initial\", and the scene's value " + io::describe(json(current)) +
+                      " outside [" + io::describe(json(par.lower)) + ", " +
+                      io::describe(json(par.upper)) + "]");
+  }
+  par.initial = p.number_or("initial", current, par.lower, par.upper);
+  p.finish();
+  return par;
+}
+
 }  // namespace
 
 Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
@@ -153,6 +214,12 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   } else {
     r.optional("scene_overrides");
   }
+  // A study-level "model" runs every scenario in that model, whatever the scene says.
+  if (r.has("model")) {
+    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+  } else {
+    r.optional("model");
+  }
   // The scene must be valid as given (its errors name the scene file).
   const scene::Scene scene0 = io::parse_scene(scene_doc, scene_file);
   EvaluatorConfig& ec = st.evaluator;
@@ -162,36 +229,10 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   ec.scene_file = scene_file;
 
   // Parameters.
+  const std::vector<std::string> unused = io::unused_settings(scene0);
   for (io::JsonReader p : r.object_array("parameters")) {
-    Parameter par;
-    par.name = p.string_or("name", "");
-    if (par.name.empty()) throw p.error("name", "a parameter name", "nothing");
-    par.pointer = p.string_or("pointer", "");
-    json::json_pointer jp;
-    try {
-      jp = json::json_pointer(par.pointer);
-    } catch (const json::exception& e) {
-      throw p.error("pointer", "a JSON Pointer into the scene", "\"" + par.pointer + "\"");
-    }
-    // The resolved scene holds every number explicitly: the pointer must name one.
-    if (par.pointer.empty() || !resolved.contains(jp) || !resolved.at(jp).is_number()) {
-      throw p.error("pointer", "a pointer to a number of the scene (see scene.resolved.json)",
-                    "\"" + par.pointer + "\"");
-    }
-    par.lower = p.number("lower");
-    par.upper = p.number("upper");
-    if (!(par.upper > par.lower))
-      throw p.error("upper", "a number > lower", std::to_string(par.upper));
-    par.log_scale = p.boolean_or("log", false);
-    if (par.log_scale && !(par.lower > 0)) {
-      throw p.error("lower", "a positive lower bound for a log-scaled parameter",
-                    std::to_string(par.lower));
-    }
-    const double current = resolved.at(jp).get<double>();
-    par.initial =
-        p.number_or("initial", std::clamp(current, par.lower, par.upper), par.lower, par.upper);
-    p.finish();
-    ec.scene_doc[jp] = par.initial;
+    Parameter par = parse_parameter(p, resolved, unused, scene0.model);
+    ec.scene_doc[json::json_pointer(par.pointer)] = par.initial;
     ec.parameters.push_back(par);
   }
   if (ec.parameters.empty()) throw r.error("parameters", "at least one parameter", "an empty list");
@@ -249,7 +290,24 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   } else {
     r.optional("constraints");
   }
+  // A metric only the full model reports is an error in a reduced-model study.
+  auto check_metric = [&](const std::string& at, const std::string& m) {
+    if (is_metric(m, scene0.model)) return;
+    throw io::InputError(
+        file, at, "a metric the " + std::string(scene::to_string(scene0.model)) + " model reports",
+        "\"" + m + "\" (only the pseudo_rigid model reports it)");
+  };
+  for (size_t i = 0; i < ec.objective.size(); ++i)
+    check_metric("/objective/" + std::to_string(i) + "/metric", ec.objective[i].metric);
+  for (size_t i = 0; i < ec.constraints.size(); ++i)
+    check_metric("/constraints/" + std::to_string(i) + "/metric", ec.constraints[i].metric);
   ec.stability = r.boolean_or("stability", true);
+  if (ec.stability && scene0.model == scene::ModelKind::kPseudoRigid &&
+      !scene0.pseudo_rigid.actuators) {
+    throw r.error("stability",
+                  "false for passive legs: the full model's stride-map fit needs a controlled gait",
+                  "true, with /pseudo_rigid/actuators false");
+  }
   ec.fall_penalty = r.positive_or("fall_penalty", 1.0);
 
   // Optimizer.

@@ -17,7 +17,8 @@
 #include "sim/io/plot.hpp"
 #include "sim/io/run_output.hpp"
 #include "sim/io/scene_loader.hpp"
-#include "sim/reduced/simulator.hpp"
+#include "sim/io/simulation_output.hpp"
+#include "sim/simulate.hpp"
 
 namespace pronk::optimize {
 
@@ -228,8 +229,8 @@ void write_design_run(const std::string& dir, const Evaluator& ev, const std::ve
   const scene::Scene base = ev.scene_at(x);
   const auto& set = ev.config().scenarios;
   const scene::Scene s = apply_scenario(base, set.scenarios.front(), set);
-  const reduced::RunResult r = reduced::simulate(s);
-  io::write_run_outputs(dir, s, r, reduced::compute_metrics(s, r));
+  const RunResult r = simulate(s);
+  io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
 }
 
 std::string summary_markdown(const Study& st, const StudyOutcome& o) {
@@ -341,6 +342,11 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
           {"constraints", o.best.constraints},
           {"feasible", o.result.best_feasible},
           {"metrics", metrics_json(o.best)},
+          {"model", std::string(scene::to_string(o.best.model))},
+          {"stability",
+           {{"method", o.best.stability_method},
+            {"ok", o.best.stability_reason.empty()},
+            {"reason", o.best.stability_reason}}},
           {"initial_metrics", metrics_json(o.initial)},
           {"initial_cost", o.initial.cost},
           {"validation", validation},

@@ -7,11 +7,7 @@
 #include "sim/io/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/reduced/metrics.hpp"
-#include "sim/reduced/simulator.hpp"
-#include "sim/reduced/stride_fit.hpp"
-#include "sim/reduced/stride_map.hpp"
-#include "sim/robot/pseudo_rigid_robot.hpp"
-#include "sim/robot/robot_simulator.hpp"
+#include "sim/simulate.hpp"
 
 namespace pronk::optimize::map {
 
@@ -68,28 +64,12 @@ void apply_derived(const MapStudy& st, const double* values, scene::Scene& s) {
     s.initial.velocity += kick_size * Eigen::Vector3d(std::cos(kick_dir), std::sin(kick_dir), 0);
 }
 
-// A run of the robot in the full model, in the reduced models' records.
-reduced::RunResult simulate_full(const scene::Scene& s) {
-  robot::RobotRunOptions opt;
-  opt.record_trajectory = false;
-  return robot::simulate(s, opt).run;
-}
-
-// Stride-map spectral radius of a scene: the stability analysis of SPEC 5.1 for the
-// reduced models; for the full model, which has no stride map to evaluate, the
-// multipliers of the affine map fitted to the touchdowns of a few disturbed runs
-// (reduced::estimate_stride_map).
+// Stride-map spectral radius of a scene in its model (SPEC 5.1; sim/simulate.hpp says how).
 void stability_of(const scene::Scene& s, CellResult& c) {
   c.has_stability = true;
-  if (s.model == scene::ModelKind::kPseudoRigid) {
-    const reduced::StrideFitResult r = reduced::estimate_stride_map(s, simulate_full);
-    c.spectral_radius = std::isfinite(r.spectral_radius) ? r.spectral_radius : 10.0;
-    c.stability_reason = r.ok ? "" : "no stride-map estimate: " + r.reason;
-    return;
-  }
-  const reduced::StabilityResult r = reduced::analyze_stability(s);
-  c.spectral_radius = std::isfinite(r.spectral_radius) ? r.spectral_radius : 10.0;
-  c.stability_reason = r.ok ? "" : r.reason;
+  const StabilityEstimate e = analyze_stability(s);
+  c.spectral_radius = e.spectral_radius;
+  c.stability_reason = e.ok ? "" : e.reason;
 }
 
 }  // namespace
@@ -126,15 +106,9 @@ Scenario trial_scenario(const MapStudy& st, std::uint64_t key, long trial) {
 
 TrialOutcome run_trial(const MapStudy& st, const scene::Scene& cell_scene, const Scenario& trial) {
   const scene::Scene sc = apply_scenario(cell_scene, trial, st.trial_set);
-  reduced::RunResult run;
-  if (sc.model == scene::ModelKind::kPseudoRigid) {
-    run = simulate_full(sc);  // the scene's "pseudo_rigid" settings; stride records as below
-  } else {
-    reduced::RunOptions opt;
-    opt.record_trajectory = false;
-    opt.record_strides = true;
-    run = reduced::simulate(sc, opt);
-  }
+  RunOptions opt;
+  opt.record_trajectory = false;
+  const reduced::RunResult run = simulate(sc, opt).run;
   const reduced::RunMetrics m = reduced::compute_metrics(sc, run, st.stabilized.settle);
   TrialOutcome t;
   t.status = std::string(reduced::to_string(run.status));
@@ -256,7 +230,7 @@ bool all_stabilized_at(const MapStudy& st, long row, double v, long probe) {
   scene::Scene s;
   try {
     s = scene_at(st, v, v1, st.primary_model());
-    if (s.model == scene::ModelKind::kPseudoRigid) robot::build_robot(s);
+    check_buildable(s);
   } catch (const io::InputError&) {
     return false;  // a value between two valid grid values that makes no valid scene
   } catch (const std::invalid_argument&) {

@@ -158,6 +158,7 @@ struct Run {
   RobotRunResult& out;
   bool record = true;
   double dissipated = 0.0, work = 0.0;
+  double positive_work = 0.0;  ///< leg actuators' positive work up to now [J]
   bool stance = false;
   std::vector<bool> in_contact;
   std::vector<Eigen::Vector2d> contact_start;
@@ -235,6 +236,12 @@ struct Run {
   std::vector<Vector3d> push;  ///< body-frame push direction of each actuator
 };
 
+// Energy put in (or taken out) by placing the legs [J].
+void book_hip_work(RobotMonitors& m, double dE) {
+  m.hip_work += dE;
+  m.positive_hip_work += std::max(0.0, dE);
+}
+
 class Observer final : public ode::StepObserver {
  public:
   Observer(Run& run, double interval, int n) : run_(run), interval_(interval), yq_(n) {}
@@ -248,6 +255,7 @@ class Observer final : public ode::StepObserver {
       const ExtraPower e = run_.sys.power(yq_);
       run_.dissipated += w[q] * (tb - ta) * (p.dissipated + e.friction);
       run_.work += w[q] * (tb - ta) * (p.actuator + e.actuator);
+      run_.positive_work += w[q] * (tb - ta) * std::max(0.0, p.actuator + e.actuator);
     }
     st.dense(tb, yq_);
     run_.monitor(yq_);
@@ -555,7 +563,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         run.push[i] = -u[i];
       }
       common_push = -u[0];  // (a leg still on the ground keeps its direction)
-      result.monitors.hip_work += msys.energies(y).total() - e_before;
+      book_hip_work(result.monitors, msys.energies(y).total() - e_before);
     }
   };
 
@@ -811,7 +819,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       if (any_free && !was_free) run.contact_begin = t;
       if (!any_free && was_free) spring_stance = t - run.contact_begin;
       sys.set_actuators(leg_force, run.push);
-      result.monitors.hip_work += msys.energies(y).total() - e_before;
+      book_hip_work(result.monitors, msys.energies(y).total() - e_before);
     } else {
       // Reached t_target: an actuator switching off, a disturbance, or the end.
       if (run.stance && !armed) {
@@ -837,7 +845,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           const Vector3d arm = y.segment<3>(6 * j) - f.com;
           y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + mech.masses[j].mass * dw.cross(arm);
         }
-        result.monitors.hip_work += msys.energies(y).total() - e_before;  // external work
+        book_hip_work(result.monitors, msys.energies(y).total() - e_before);  // external work
       }
       if (t >= sim.duration) running = false;
     }
@@ -848,6 +856,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
                           Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));
   }
   finish_stride(-1.0);
+  result.monitors.actuator_work = run.work + result.monitors.hip_work;
+  result.monitors.positive_actuator_work = run.positive_work + result.monitors.positive_hip_work;
 
   res.t_end = t;
   const control::BodyState s = run.body_state(y);

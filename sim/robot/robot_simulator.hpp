@@ -42,6 +42,9 @@ struct RobotMonitors {
   double max_slip = 0.0;            ///< largest horizontal foot travel within one stance [m]
   double max_friction_ratio = 0.0;  ///< largest |F_t| / N seen (mu = sliding) [-]
   double hip_work = 0.0;            ///< energy put in by placing the legs [J]
+  double positive_hip_work = 0.0;   ///< its positive part, placement by placement [J]
+  double actuator_work = 0.0;       ///< net work of leg actuators and hip placement [J]
+  double positive_actuator_work = 0.0;  ///< the same counting only positive power [J]
   /// Energy in the legs (leg springs + feet's kinetic energy relative to the
   /// body) at the flight apexes: the foot vibration on the leg springs [J].
   double max_leg_vibration_energy = 0.0;

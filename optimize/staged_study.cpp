@@ -1,0 +1,357 @@
+#include "optimize/staged_study.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+#include "sim/io/json_reader.hpp"
+#include "sim/io/run_output.hpp"
+#include "sim/io/scene_loader.hpp"
+
+namespace pronk::optimize {
+
+using nlohmann::json;
+
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Keys a stage may set for itself; every other study key is shared by all stages.
+const std::vector<std::string>& stage_study_keys() {
+  static const std::vector<std::string> keys = {"optimizer",   "scenarios", "validation",
+                                                "stability",   "objective", "constraints",
+                                                "fall_penalty"};
+  return keys;
+}
+
+// The study's scene, resolved (every default explicit) with its overrides applied.
+json resolved_scene(io::JsonReader& r, const json& doc, const std::string& file,
+                    const std::string& base_dir) {
+  if (!doc.contains("scene"))
+    throw r.error("scene", "a scene file path or an inline scene object", "nothing");
+  const json& sv = doc.at("scene");
+  json scene_doc;
+  std::string scene_file = file + "#/scene";
+  if (sv.is_string()) {
+    std::filesystem::path p(sv.get<std::string>());
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    scene_file = p.lexically_normal().string();
+    scene_doc = io::read_json_file(scene_file);
+  } else if (sv.is_object()) {
+    scene_doc = sv;
+  } else {
+    throw r.error("scene", "a scene file path or an inline scene object", io::describe(sv));
+  }
+  if (doc.contains("scene_overrides") && doc.at("scene_overrides").is_array()) {
+    for (const auto& o : doc.at("scene_overrides"))
+      if (o.is_string()) io::apply_override(scene_doc, o.get<std::string>());
+  }
+  return io::scene_to_json(io::parse_scene(scene_doc, scene_file));
+}
+
+// Name, pointer and starting value of every study parameter (the stages check the rest).
+std::vector<Parameter> study_parameters(io::JsonReader& r, const json& doc, const json& scene) {
+  if (!doc.contains("parameters") || !doc.at("parameters").is_array() ||
+      doc.at("parameters").empty()) {
+    throw r.error("parameters", "a non-empty array of parameters",
+                  doc.contains("parameters") ? io::describe(doc.at("parameters")) : "nothing");
+  }
+  std::vector<Parameter> out;
+  for (size_t i = 0; i < doc.at("parameters").size(); ++i) {
+    const json& p = doc.at("parameters")[i];
+    const std::string at = "/parameters/" + std::to_string(i);
+    if (!p.is_object() || !p.value("name", json()).is_string() ||
+        !p.value("pointer", json()).is_string()) {
+      throw io::InputError(r.file(), at, "an object with a \"name\" and a \"pointer\"",
+                           io::describe(p));
+    }
+    Parameter par;
+    par.name = p.at("name").get<std::string>();
+    par.pointer = p.at("pointer").get<std::string>();
+    json::json_pointer jp;
+    try {
+      jp = json::json_pointer(par.pointer);
+    } catch (const json::exception&) {
+      throw io::InputError(r.file(), at + "/pointer", "a JSON Pointer into the scene",
+                           "\"" + par.pointer + "\"");
+    }
+    if (!scene.contains(jp) || !scene.at(jp).is_number()) {
+      throw io::InputError(r.file(), at + "/pointer",
+                           "a pointer to a number of the scene format (see scene.resolved.json)",
+                           "\"" + par.pointer + "\", which names no number of a scene");
+    }
+    const json& init = p.value("initial", json());
+    par.initial = init.is_number() ? init.get<double>() : scene.at(jp).get<double>();
+    out.push_back(par);
+  }
+  return out;
+}
+
+StageSpec parse_stage(io::JsonReader s, const StagedStudy& st, const json& raw,
+                      const std::vector<StageSpec>& earlier) {
+  StageSpec stage;
+  stage.name = s.string_or("name", "");
+  const bool name_ok =
+      !stage.name.empty() &&
+      stage.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") == std::string::npos;
+  if (!name_ok) throw s.error("name", "a stage name of [a-z0-9_]", "\"" + stage.name + "\"");
+  for (const auto& e : earlier)
+    if (e.name == stage.name) throw s.error("name", "a name no earlier stage has", stage.name);
+  if (!s.has("model"))
+    throw s.error("model", "the stage's model (impulse, pulse, pseudo_rigid)", "nothing");
+  stage.model = s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+  stage.start = s.string_or("start", "previous");
+  bool start_ok = stage.start == "previous" || stage.start == "initial";
+  for (const auto& e : earlier) start_ok = start_ok || e.name == stage.start;
+  if (!start_ok) {
+    throw s.error("start", "\"initial\", \"previous\" or the name of an earlier stage",
+                  "\"" + stage.start + "\"");
+  }
+  if (s.has("parameters")) {
+    const json& names = raw.at("parameters");
+    s.optional("parameters");
+    if (!names.is_array() || names.empty())
+      throw s.error("parameters", "a non-empty array of parameter names", io::describe(names));
+    for (const auto& n : names) {
+      const bool known =
+          n.is_string() && std::any_of(st.parameters.begin(), st.parameters.end(),
+                                       [&](const Parameter& p) { return p.name == n; });
+      if (!known) throw s.error("parameters", "names of the study's parameters", io::describe(n));
+      stage.parameters.push_back(n.get<std::string>());
+    }
+  } else {
+    s.optional("parameters");
+    for (const auto& p : st.parameters) stage.parameters.push_back(p.name);
+  }
+  stage.overrides = json::object();
+  for (const auto& k : stage_study_keys()) {
+    if (raw.contains(k)) stage.overrides[k] = raw.at(k);
+    s.optional(k);
+  }
+  s.string_or("description", "");
+  s.finish();
+  return stage;
+}
+
+}  // namespace
+
+bool is_staged_study(const json& doc) { return doc.is_object() && doc.contains("stages"); }
+
+Study stage_study(const StagedStudy& st, size_t k, const std::map<std::string, double>& values) {
+  const StageSpec& stage = st.stages.at(k);
+  json d = st.document;
+  d["name"] = st.name + "_" + stage.name;
+  d["model"] = stage.model;
+  for (const auto& [key, v] : stage.overrides.items()) d[key] = v;
+  json scene = st.scene;
+  for (const auto& p : st.parameters) scene[json::json_pointer(p.pointer)] = values.at(p.name);
+  d["scene"] = scene;
+  d.erase("scene_overrides");
+  d.erase("output");
+  json params = json::array();
+  for (const json& p : st.document.at("parameters")) {
+    const std::string name = p.at("name").get<std::string>();
+    if (std::find(stage.parameters.begin(), stage.parameters.end(), name) == stage.parameters.end())
+      continue;
+    json q = p;
+    q["initial"] = values.at(name);
+    params.push_back(q);
+  }
+  d["parameters"] = params;
+  return parse_study(d, st.file + " (stage \"" + stage.name + "\", " + stage.model + " model)",
+                     st.base_dir);
+}
+
+StagedStudy parse_staged_study(const json& doc, const std::string& file,
+                               const std::string& base_dir) {
+  StagedStudy st;
+  st.file = file;
+  st.base_dir = base_dir;
+  io::JsonReader r(doc, file, "");
+  st.name = r.string_or("name", "");
+  if (st.name.empty() || st.name.find('/') != std::string::npos)
+    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  if (doc.contains("model"))
+    throw r.error("model", "a \"model\" in every stage, none at the top",
+                  io::describe(doc["model"]));
+  st.scene = resolved_scene(r, doc, file, base_dir);
+  st.parameters = study_parameters(r, doc, st.scene);
+  st.original = doc;
+  st.document = doc;
+  st.document.erase("stages");
+  st.output_dir = doc.value("output", "results/" + st.name);
+  std::vector<io::JsonReader> stages = r.object_array("stages");
+  if (stages.empty()) throw r.error("stages", "at least one stage", "an empty list");
+  for (size_t k = 0; k < stages.size(); ++k)
+    st.stages.push_back(parse_stage(stages[k], st, doc.at("stages")[k], st.stages));
+  std::set<std::string> tuned;
+  for (const auto& s : st.stages) tuned.insert(s.parameters.begin(), s.parameters.end());
+  for (size_t i = 0; i < st.parameters.size(); ++i) {
+    if (!tuned.count(st.parameters[i].name)) {
+      throw io::InputError(file, "/parameters/" + std::to_string(i), "a parameter some stage tunes",
+                           "\"" + st.parameters[i].name + "\"");
+    }
+  }
+  // Every stage must be a valid study of its own model (from the initial design).
+  std::map<std::string, double> initial;
+  for (const auto& p : st.parameters) initial[p.name] = p.initial;
+  for (size_t k = 0; k < st.stages.size(); ++k) stage_study(st, k, initial);
+  return st;
+}
+
+namespace {
+
+std::map<std::string, double> start_values(const StagedStudy& st, size_t k,
+                                           const std::vector<StageOutcome>& done,
+                                           const std::map<std::string, double>& initial) {
+  const std::string& start = st.stages[k].start;
+  if (start == "initial" || (start == "previous" && k == 0)) return initial;
+  if (start == "previous") return done.back().values;
+  for (const auto& d : done)
+    if (d.name == start) return d.values;
+  return initial;  // unreachable: parse_stage checked the name
+}
+
+json read_design(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return json();
+  try {
+    return io::read_json_file(path);
+  } catch (const io::InputError&) {
+    return json();  // a design.json torn by a crash: the stage runs again (its journal replays)
+  }
+}
+
+StageOutcome run_stage(const StagedStudy& st, size_t k, const std::map<std::string, double>& from,
+                       const StudyRunOptions& opt, const std::string& out_dir, bool* stopped) {
+  const Study s = stage_study(st, k, from);
+  StageOutcome o;
+  o.name = st.stages[k].name;
+  o.model = st.stages[k].model;
+  o.out_dir = out_dir + "/stages/" + std::to_string(k + 1) + "_" + o.name;
+  o.values = from;
+  const json done = opt.resume ? read_design(o.out_dir + "/design.json") : json();
+  if (done.is_object() && done.value("study_hash", "") == s.hash) {
+    o.design = done;
+    o.skipped = true;
+  } else {
+    StudyRunOptions so = opt;
+    so.out_dir = o.out_dir;
+    const StudyOutcome r = run_study(s, so);
+    const auto status = r.result.status;
+    *stopped = status == OptimizerStatus::kStopped || status == OptimizerStatus::kFailed;
+    o.design = io::read_json_file(o.out_dir + "/design.json");
+  }
+  for (const auto& [name, v] : o.design.at("parameters").items()) o.values[name] = v.get<double>();
+  return o;
+}
+
+// The same design (all parameter values) evaluated by the last stage's evaluator.
+Evaluation evaluate_in_last(const StagedStudy& st, const std::map<std::string, double>& values,
+                            int threads) {
+  EvaluatorConfig cfg = stage_study(st, st.stages.size() - 1, values).evaluator;
+  cfg.threads = threads;
+  const Evaluator ev(cfg);
+  return ev.evaluate_full(ev.initial_point());
+}
+
+json evaluation_json(const Evaluation& e) {
+  json m = json::object();
+  for (const auto& [k, v] : e.aggregated) m[k] = v;
+  return {{"cost", e.cost}, {"ok", e.ok}, {"metrics", m}};
+}
+
+json staged_design(const StagedStudy& st, const StagedOutcome& o, const json& doc) {
+  json d = o.stages.back().design;
+  json stages = json::array();
+  for (const auto& s : o.stages) {
+    stages.push_back({{"name", s.name},
+                      {"model", s.model},
+                      {"directory", s.out_dir},
+                      {"parameters", s.values},
+                      {"cost", s.design.at("cost")},
+                      {"initial_cost", s.design.at("initial_cost")},
+                      {"metrics", s.design.at("metrics")},
+                      {"optimizer", s.design.at("optimizer")},
+                      {"stability", s.design.value("stability", json())}});
+  }
+  d["stages"] = stages;
+  d["fidelity_gap"] = {{"model", o.stages.back().model},
+                       {"first_stage", o.stages.front().name},
+                       {"first_stage_design", evaluation_json(o.gap_first)},
+                       {"final_design", evaluation_json(o.final_best)}};
+  d["staged_study"] = st.name;
+  d["staged_study_document"] = doc;
+  return d;
+}
+
+std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
+  std::ostringstream md;
+  md << "# Study `" << st.name << "` (" << o.stages.size() << " stages)\n\n"
+     << "| stage | model | evaluations | initial cost | tuned cost | directory |\n"
+     << "|---|---|---|---|---|---|\n";
+  for (const auto& s : o.stages) {
+    md << "| " << s.name << " | " << s.model << " | "
+       << s.design.at("optimizer").value("evaluations", 0L) << " | "
+       << s.design.value("initial_cost", 0.0) << " | " << s.design.value("cost", 0.0) << " | `"
+       << s.out_dir << "` |\n";
+  }
+  md << "\nParameters after each stage:\n\n| parameter |";
+  for (const auto& s : o.stages) md << " " << s.name << " |";
+  md << "\n|---|";
+  for (size_t i = 0; i < o.stages.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& p : st.parameters) {
+    md << "| " << p.name << " |";
+    for (const auto& s : o.stages) md << " " << s.values.at(p.name) << " |";
+    md << "\n";
+  }
+  md << "\n## Fidelity gap\n\nThe first stage's design (tuned in the " << o.stages.front().model
+     << " model) and the final design, both evaluated in the " << o.stages.back().model
+     << " model on the last stage's scenarios:\n\n| metric | first stage's design | final design "
+        "|\n|---|---|---|\n";
+  md << "| cost | " << o.gap_first.cost << " | " << o.final_best.cost << " |\n";
+  for (const auto& [k, v] : o.final_best.aggregated) {
+    const auto it = o.gap_first.aggregated.find(k);
+    md << "| " << k << " | " << (it != o.gap_first.aggregated.end() ? it->second : 0.0) << " | "
+       << v << " |\n";
+  }
+  md << "\n`design.json` holds the final design (reproduce with `pronk reproduce " << o.out_dir
+     << "/design.json`), every stage's result and this gap.\n";
+  return md.str();
+}
+
+}  // namespace
+
+StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt) {
+  const double t0 = now_s();
+  StagedOutcome o;
+  o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
+  io::make_directories(o.out_dir + "/stages");
+  std::map<std::string, double> initial;
+  for (const auto& p : st.parameters) initial[p.name] = p.initial;
+  for (size_t k = 0; k < st.stages.size(); ++k) {
+    bool stopped = false;
+    o.stages.push_back(
+        run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
+    if (stopped) {
+      o.ok = false;
+      o.wall_time = now_s() - t0;
+      return o;  // the finished stages' results stay on disk; --resume continues
+    }
+  }
+  o.gap_first = evaluate_in_last(st, o.stages.front().values, opt.threads);
+  o.final_best = evaluate_in_last(st, o.stages.back().values, opt.threads);
+  o.wall_time = now_s() - t0;
+  io::write_file_atomic(o.out_dir + "/design.json",
+                        io::dump_checked(staged_design(st, o, st.original)));
+  io::write_file_atomic(o.out_dir + "/summary.md", staged_summary(st, o));
+  return o;
+}
+
+}  // namespace pronk::optimize

@@ -1,0 +1,73 @@
+// Multi-fidelity studies: a study with "stages", each its own model, optimizer,
+// budget and scenarios, run one after the other. Each stage is an ordinary
+// single-model study (study.hpp) whose scene carries the design the stage starts
+// from, run by run_study into OUT/stages/<k>_<name>/ with its own journal, so
+// --resume replays every stage byte for byte. OUT/design.json is the last stage's
+// design (`pronk reproduce` checks it) plus every stage's result and the fidelity
+// gap: the first stage's design re-evaluated in the last stage's model.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "optimize/study.hpp"
+#include "optimize/study_runner.hpp"
+
+namespace pronk::optimize {
+
+struct StageSpec {
+  std::string name;
+  std::string model;                    ///< impulse, pulse or pseudo_rigid
+  std::string start;                    ///< "initial", "previous" or an earlier stage's name
+  std::vector<std::string> parameters;  ///< the study's parameters this stage tunes
+  nlohmann::json overrides;             ///< study keys the stage replaces (optimizer, ...)
+};
+
+struct StagedStudy {
+  std::string name;
+  std::string file;
+  std::string base_dir;               ///< resolves the scene path
+  nlohmann::json original;            ///< the study as read
+  nlohmann::json document;            ///< the study without "stages"
+  nlohmann::json scene;               ///< resolved scene, overrides applied
+  std::vector<Parameter> parameters;  ///< of the whole study (initial values from it)
+  std::vector<StageSpec> stages;
+  std::string output_dir;
+};
+
+/// True when the study document has "stages".
+bool is_staged_study(const nlohmann::json& doc);
+
+/// Reads a staged study and checks every stage as a study of its own (its model
+/// uses every parameter it tunes, its keys are known, its start exists).
+/// Throws io::InputError naming the file, pointer, expected and found.
+StagedStudy parse_staged_study(const nlohmann::json& doc, const std::string& file,
+                               const std::string& base_dir);
+
+/// The single-model study of stage k, starting from `values` (parameter name -> value).
+Study stage_study(const StagedStudy& st, size_t k, const std::map<std::string, double>& values);
+
+struct StageOutcome {
+  std::string name, model, out_dir;
+  std::map<std::string, double> values;  ///< every parameter after the stage
+  nlohmann::json design;                 ///< the stage's design.json
+  bool skipped = false;                  ///< taken from a finished stage on --resume
+};
+
+struct StagedOutcome {
+  std::vector<StageOutcome> stages;
+  Evaluation gap_first;   ///< the first stage's design in the last stage's model
+  Evaluation final_best;  ///< the last stage's design, same evaluator
+  std::string out_dir;
+  double wall_time = 0.0;  ///< [s]
+  bool ok = true;          ///< every stage's optimizer finished (not stopped or failed)
+};
+
+/// Runs every stage (resuming finished ones with options.resume), then writes
+/// OUT/design.json and OUT/summary.md.
+StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& options);
+
+}  // namespace pronk::optimize
