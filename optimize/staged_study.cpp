@@ -184,6 +184,7 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
   st.original = doc;
   st.document = doc;
   st.document.erase("stages");
+  st.document.erase("cross_evaluate");
   st.output_dir = doc.value("output", "results/" + st.name);
   std::vector<io::JsonReader> stages = r.object_array("stages");
   if (stages.empty()) throw r.error("stages", "at least one stage", "an empty list");
@@ -251,10 +252,10 @@ StageOutcome run_stage(const StagedStudy& st, size_t k, const std::map<std::stri
   return o;
 }
 
-// The same design (all parameter values) evaluated by the last stage's evaluator.
-Evaluation evaluate_in_last(const StagedStudy& st, const std::map<std::string, double>& values,
-                            int threads) {
-  EvaluatorConfig cfg = stage_study(st, st.stages.size() - 1, values).evaluator;
+// A design (all parameter values) evaluated by stage k's evaluator (model, scenarios).
+Evaluation evaluate_in_stage(const StagedStudy& st, size_t k,
+                             const std::map<std::string, double>& values, int threads) {
+  EvaluatorConfig cfg = stage_study(st, k, values).evaluator;
   cfg.threads = threads;
   const Evaluator ev(cfg);
   return ev.evaluate_full(ev.initial_point());
@@ -285,6 +286,16 @@ json staged_design(const StagedStudy& st, const StagedOutcome& o, const json& do
                        {"first_stage", o.stages.front().name},
                        {"first_stage_design", evaluation_json(o.gap_first)},
                        {"final_design", evaluation_json(o.final_best)}};
+  if (!o.cross.empty()) {
+    json rows = json::array();
+    for (size_t i = 0; i < o.cross.size(); ++i) {
+      json row = json::object();
+      for (size_t j = 0; j < o.cross[i].size(); ++j)
+        row[o.stages[j].name] = evaluation_json(o.cross[i][j]);
+      rows.push_back({{"design", o.stages[i].name}, {"evaluated_by", row}});
+    }
+    d["cross_evaluation"] = rows;
+  }
   d["staged_study"] = st.name;
   d["staged_study_document"] = doc;
   return d;
@@ -321,6 +332,23 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
     md << "| " << k << " | " << (it != o.gap_first.aggregated.end() ? it->second : 0.0) << " | "
        << v << " |\n";
   }
+  if (!o.cross.empty()) {
+    md << "\n## Every design in every model\n\nRows: the stage whose design is evaluated; "
+          "columns: the stage (model and scenarios) that evaluates it. Each cell: mean "
+          "stabilized fraction / cost.\n\n| design \\ evaluated in |";
+    for (const auto& s : o.stages) md << " " << s.name << " (" << s.model << ") |";
+    md << "\n|---|";
+    for (size_t j = 0; j < o.stages.size(); ++j) md << "---|";
+    md << "\n";
+    for (size_t i = 0; i < o.cross.size(); ++i) {
+      md << "| " << o.stages[i].name << " |";
+      for (const Evaluation& e : o.cross[i]) {
+        const auto it = e.aggregated.find("stabilized");
+        md << " " << (it != e.aggregated.end() ? it->second : 0.0) << " / " << e.cost << " |";
+      }
+      md << "\n";
+    }
+  }
   md << "\n`design.json` holds the final design (reproduce with `pronk reproduce " << o.out_dir
      << "/design.json`), every stage's result and this gap.\n";
   return md.str();
@@ -345,8 +373,15 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
       return o;  // the finished stages' results stay on disk; --resume continues
     }
   }
-  o.gap_first = evaluate_in_last(st, o.stages.front().values, opt.threads);
-  o.final_best = evaluate_in_last(st, o.stages.back().values, opt.threads);
+  const size_t last = st.stages.size() - 1;
+  o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt.threads);
+  o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt.threads);
+  if (st.cross_evaluate) {
+    o.cross.resize(st.stages.size());
+    for (size_t i = 0; i < st.stages.size(); ++i)
+      for (size_t j = 0; j < st.stages.size(); ++j)
+        o.cross[i].push_back(evaluate_in_stage(st, j, o.stages[i].values, opt.threads));
+  }
   o.wall_time = now_s() - t0;
   io::write_file_atomic(o.out_dir + "/design.json",
                         io::dump_checked(staged_design(st, o, st.original)));

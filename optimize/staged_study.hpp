@@ -4,7 +4,10 @@
 // from, run by run_study into OUT/stages/<k>_<name>/ with its own journal, so
 // --resume replays every stage byte for byte. OUT/design.json is the last stage's
 // design (`pronk reproduce` checks it) plus every stage's result and the fidelity
-// gap: the first stage's design re-evaluated in the last stage's model.
+// gap: the first stage's design re-evaluated in the last stage's model. With
+// "cross_evaluate": true every stage's design is also evaluated by every stage's
+// evaluator (its model and scenarios): how far a design tuned in a cheap model
+// can be trusted in a detailed one.
 #pragma once
 
 #include <map>
@@ -36,6 +39,7 @@ struct StagedStudy {
   std::vector<Parameter> parameters;  ///< of the whole study (initial values from it)
   std::vector<StageSpec> stages;
   std::string output_dir;
+  bool cross_evaluate = false;  ///< evaluate every stage's design in every stage
 };
 
 /// True when the study document has "stages".
@@ -61,6 +65,8 @@ struct StagedOutcome {
   std::vector<StageOutcome> stages;
   Evaluation gap_first;   ///< the first stage's design in the last stage's model
   Evaluation final_best;  ///< the last stage's design, same evaluator
+  /// With cross_evaluate: cross[i][j] = stage i's design evaluated by stage j.
+  std::vector<std::vector<Evaluation>> cross;
   std::string out_dir;
   double wall_time = 0.0;  ///< [s]
   bool ok = true;          ///< every stage's optimizer finished (not stopped or failed)

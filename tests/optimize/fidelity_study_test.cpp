@@ -186,7 +186,7 @@ json staged_study() {
     "parameters": [
       {"name": "kp_roll", "pointer": "/controller/kp/3", "lower": 0.002, "upper": 0.05, "log": true},
       {"name": "bank_kp", "pointer": "/controller/bank/kp", "lower": 0.01, "upper": 0.2},
-      {"name": "T", "pointer": "/pulse/duration", "lower": 0.02, "upper": 0.08}
+      {"name": "T", "pointer": "/pulse/duration", "lower": 0.02, "upper": 0.12}
     ],
     "scenarios": {"duration": 3, "random": {"count": 3, "seed": 4, "tilt_deg": [0, 8]}},
     "objective": [{"metric": "attitude_error"}, {"metric": "y_error"}],
@@ -222,7 +222,9 @@ TEST_CASE("staged studies: bad stages are input errors", "[optimize][input][stag
 
 TEST_CASE("staged studies run in order, report the fidelity gap and resume byte for byte",
           "[optimize][stages]") {
-  const StagedStudy st = parse_staged_study(staged_study(), "staged_test.json", scenes_dir());
+  json doc = staged_study();
+  doc["cross_evaluate"] = true;
+  const StagedStudy st = parse_staged_study(doc, "staged_test.json", scenes_dir());
   const std::string dir = temp_dir();
   StudyRunOptions opt;
   opt.out_dir = dir;
@@ -245,6 +247,14 @@ TEST_CASE("staged studies run in order, report the fidelity gap and resume byte 
   CHECK(design.at("stages").size() == 2);
   CHECK(design.at("fidelity_gap").at("first_stage_design").at("cost") == o.gap_first.cost);
   CHECK(design.at("cost") == d2.at("cost"));
+  // Every design in every stage: the diagonal is each stage's own tuned cost, the
+  // off-diagonal corner is the fidelity gap.
+  REQUIRE(o.cross.size() == 2);
+  CHECK(o.cross[0][1].cost == o.gap_first.cost);
+  CHECK(o.cross[1][1].cost == o.final_best.cost);
+  CHECK(o.cross[0][0].cost == Approx(d1.at("cost").get<double>()).epsilon(1e-9));
+  CHECK(o.cross[1][1].cost == Approx(d2.at("cost").get<double>()).epsilon(1e-9));
+  CHECK(design.at("cross_evaluation").size() == 2);
   // Resume after a crash in the second stage: its journal cut to 5 lines and the
   // final files gone. The journal comes back byte for byte.
   const std::string j2 = dir + "/stages/2_pulse/journal.jsonl";
