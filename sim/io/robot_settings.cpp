@@ -68,6 +68,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     r.optional("stance_attitude");
   }
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
+  p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -122,6 +123,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"kd", {p.stance_kd[0], p.stance_kd[1]}},
               {"max_moment", p.stance_max_moment}}},
             {"level_feet", p.level_feet},
+            {"hop_trim_gain", p.hop_trim_gain},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},
@@ -165,7 +167,8 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :
              {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
-              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet"}) {
+              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet",
+              "hop_trim_gain"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       } else if (!s.pseudo_rigid.hip_rotation) {

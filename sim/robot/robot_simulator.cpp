@@ -55,13 +55,21 @@ class SpringReboundController final : public control::BodyController {
   /// along it, so the linear request is projected on it before allocation).
   /// hips: mean hip position, body frame [m]; gravity [m/s^2]; stance: expected
   /// stance duration [s] (0: the springs' moment is not compensated).
+  /// trim: extra vertical takeoff speed asked of the legs (hop-height feedback) [m/s].
   SpringReboundController(const control::BodyController& inner, double mass, const Vector3d* push,
-                          const Vector3d& hips, double gravity, const double* stance)
-      : inner_(inner), mass_(mass), push_(push), hips_(hips), gravity_(gravity), stance_(stance) {}
+                          const Vector3d& hips, double gravity, const double* stance,
+                          const double* trim)
+      : inner_(inner),
+        mass_(mass),
+        push_(push),
+        hips_(hips),
+        gravity_(gravity),
+        stance_(stance),
+        trim_(trim) {}
   control::BodyCommand command(double t, const control::BodyState& s) const override {
     control::BodyCommand c = inner_.command(t, s);
     const double rebound = -2.0 * mass_ * std::min(0.0, s.velocity.z());  // [N s]
-    c.P_world.z() -= rebound;
+    c.P_world.z() += mass_ * *trim_ - rebound;
     const Vector3d d = s.rotation * *push_;
     c.P_world = c.P_world.dot(d) * d;
     // The springs' impulse (rebound plus the weight over the stance) acts along the
@@ -81,6 +89,7 @@ class SpringReboundController final : public control::BodyController {
   Vector3d hips_;
   double gravity_;
   const double* stance_;
+  const double* trim_;
 };
 
 class ComHeightEvent final : public ode::EventFunction {
@@ -350,6 +359,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           ? M_PI * std::sqrt(scene.body.mass /
                              (prs.leg_stiffness * static_cast<double>(model.hip.size())))
           : 0.0;
+  double hop_trim = 0.0;  ///< hop-height feedback: extra takeoff speed asked [m/s]
   // One controller per hop-height setpoint (controller.hop_height_changes).
   struct Layer {
     std::unique_ptr<scene::Scene> scene;
@@ -367,7 +377,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         L.scene->controller, g, l, !scene.legs.body_only, false,
         L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
     L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push,
-                                                          mean_hip, g, &spring_stance);
+                                                          mean_hip, g, &spring_stance, &hop_trim);
     L.legs = control::make_leg_controller(*L.scene);
     L.from = from;
     layers.push_back(std::move(L));
@@ -656,6 +666,12 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       if (!run.stance && have_stride && !current.has_apex) {
         current.has_apex = true;
         current.apex_height = body_com(model, y).x.z();
+        if (prs.hop_trim_gain > 0.0) {
+          // Hop-height feedback: the takeoff speed this apex lacked, asked for next time.
+          const double v_want = std::sqrt(2.0 * g * layer_at(t).scene->controller.hop_height);
+          const double v_got = std::sqrt(2.0 * g * std::max(0.0, current.apex_height - l));
+          hop_trim = std::clamp(hop_trim + prs.hop_trim_gain * (v_want - v_got), -v_want, v_want);
+        }
         // Everything the legs and the ground gave since touchdown (gravity removed).
         current.P_delivered = total_momentum(y) - p_touchdown +
                               Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));

@@ -143,6 +143,12 @@ struct PseudoRigid {
   /// feet reach the ground together at the predicted touchdown attitude; the energy
   /// change is booked as hip work.
   bool level_feet = false;
+  /// Hop-height feedback (spring legs): after each flight apex the vertical takeoff
+  /// speed asked of the legs changes by gain x (sqrt(2 g h) - sqrt(2 g h_apex)), h_apex
+  /// the apex just measured above the leg length, so the losses in leg and foot
+  /// dampers that the elastic-rebound law does not model are made up stride by
+  /// stride (1 = dead-beat for a constant loss). 0 = off [-].
+  double hop_trim_gain = 0.0;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
