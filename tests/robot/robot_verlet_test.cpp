@@ -41,6 +41,10 @@ double worst_sample(const robot::RobotRunResult& r) {
 /// Tilt of the body z axis from the vertical [rad] from Euler 123 angles.
 double tilt(const Eigen::Vector3d& e) { return std::acos(std::cos(e.x()) * std::cos(e.y())); }
 
+/// The --set of a whole pseudo_rigid.solver object (its keys are not in the scene file).
+std::string solver(const std::string& fields) { return "/pseudo_rigid/solver={" + fields + "}"; }
+const std::string kVerlet = R"("method":"verlet","h_fixed":1e-4)";
+
 }  // namespace
 
 TEST_CASE("robot system forwards the mechanism's dissipation split and metric", "[robot]") {
@@ -84,8 +88,7 @@ TEST_CASE("robot system forwards the mechanism's dissipation split and metric", 
 
 TEST_CASE("robot pseudo_rigid solver energy_tol: read, validated, written back, listed unused",
           "[robot]") {
-  const scene::Scene v = load("pr_running.json", {"/pseudo_rigid/solver/method=\"verlet\"",
-                                                  "/pseudo_rigid/solver/energy_tol=2e-4"});
+  const scene::Scene v = load("pr_running.json", {solver(kVerlet + R"(,"energy_tol":2e-4)")});
   CHECK(v.pseudo_rigid.energy_tol == 2e-4);
   const nlohmann::json back = io::scene_to_json(v);
   CHECK(back["pseudo_rigid"]["solver"]["energy_tol"] == 2e-4);
@@ -95,10 +98,10 @@ TEST_CASE("robot pseudo_rigid solver energy_tol: read, validated, written back, 
     return std::find(u.begin(), u.end(), "/pseudo_rigid/solver/energy_tol") != u.end();
   };
   CHECK_FALSE(unused(v));
-  CHECK(unused(load("pr_running.json", {"/pseudo_rigid/solver/method=\"rodas4\""})));
+  CHECK(unused(load("pr_running.json", {solver(R"("method":"rodas4")")})));
   for (const char* bad : {"-1e-4", "0.9", "\"tight\""}) {
     try {
-      load("pr_running.json", {std::string("/pseudo_rigid/solver/energy_tol=") + bad});
+      load("pr_running.json", {solver(kVerlet + ",\"energy_tol\":" + bad)});
       FAIL("energy_tol " << bad << " accepted");
     } catch (const io::InputError& e) {
       CHECK(std::string(e.what()).find("/pseudo_rigid/solver/energy_tol") != std::string::npos);
@@ -113,11 +116,10 @@ TEST_CASE("robot pseudo_rigid solver energy_tol: read, validated, written back, 
 TEST_CASE("robot on verlet past its stability limit ends diverged with numbers, never NaN",
           "[robot]") {
   const std::vector<std::vector<std::string>> cases = {
-      {"/pseudo_rigid/solver/h_fixed=1e-3"},
-      {"/pseudo_rigid/solver/h_fixed=1e-4", "/pseudo_rigid/contact_stiffness=1e8"}};
+      {solver(R"("method":"verlet","h_fixed":1e-3)")},
+      {solver(kVerlet), "/pseudo_rigid/contact_stiffness=1e8"}};
   for (const auto& extra : cases) {
-    std::vector<std::string> set = {"/pseudo_rigid/solver/method=\"verlet\"",
-                                    "/pseudo_rigid/solver/energy_tol=0", "/simulation/duration=2"};
+    std::vector<std::string> set = {"/simulation/duration=2"};
     set.insert(set.end(), extra.begin(), extra.end());
     const robot::RobotRunResult r = robot::simulate(load("pr_running.json", set));
     INFO(extra.back() << ": " << r.run.reason);
@@ -130,4 +132,59 @@ TEST_CASE("robot on verlet past its stability limit ends diverged with numbers, 
     for (const auto& smp : r.run.trajectory) REQUIRE(smp.position.allFinite());
     for (const auto& smp : r.samples) REQUIRE(std::isfinite(smp.energies.total()));
   }
+}
+
+// Every sample's energy balance (E + dissipated - actuator and hip work, against its start)
+// on Verlet at h = 1e-4 s over the whole 10 s of pr_running, against the issue's bar of 1e-3
+// of the energy scale (measured: 7.1e-4; 1.5e-4 at h = 5e-5 s).
+TEST_CASE("robot on verlet keeps the energy balance at every sample (pr_running)",
+          "[robot][heavy]") {
+  const robot::RobotRunResult r = robot::simulate(load("pr_running.json", {solver(kVerlet)}));
+  REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
+  REQUIRE(r.samples.size() > 1900);
+  INFO("worst sample " << worst_sample(r) / r.monitors.energy_scale << " of the scale");
+  CHECK(worst_sample(r) <= 1e-3 * r.monitors.energy_scale);
+  CHECK(r.monitors.energy_drift <= 1e-3 * r.monitors.energy_scale);
+  CHECK(r.monitors.energy_drift >= (1.0 - 1e-12) * worst_sample(r));  // it sees every sample
+  // The split ran: every step's friction solved implicitly, no step rejected or collapsed.
+  CHECK(r.run.cost.solver.jacobian_evaluations == 0);
+}
+
+// Verlet (h = 1e-4 s) against RODAS4 at rtol 1e-8, atol 1e-10 (100x tighter than the
+// scene's), on the first 3 s of pr_running (10 strides; the tight reference costs ~10 s of
+// CPU per simulated second): stride by stride the apex heights within 1 %, and at the end
+// the tilt and the lateral error within 10 % or 0.1 deg / 1 mm. Measured over the full 10 s
+// against the scene's RODAS4: apexes within 0.51 %, final lateral error 3.7 vs 2.9 mm,
+// roll/pitch within 0.02 deg.
+TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running, 3 s)",
+          "[robot][heavy]") {
+  const std::vector<std::string> shortened = {"/simulation/duration=3"};
+  std::vector<std::string> v = shortened, ref = shortened;
+  v.push_back(solver(kVerlet));
+  ref.push_back(solver(R"("method":"rodas4","rtol":1e-8,"atol":1e-10,"h_max":0.01,)"
+                       R"("event_tol":1e-10)"));
+  const robot::RobotRunResult a = robot::simulate(load("pr_running.json", v));
+  const robot::RobotRunResult b = robot::simulate(load("pr_running.json", ref));
+  REQUIRE(a.run.status == reduced::RunStatus::kCompleted);
+  REQUIRE(b.run.status == reduced::RunStatus::kCompleted);
+  REQUIRE(a.run.strides.size() == b.run.strides.size());
+  REQUIRE(a.run.strides.size() >= 10);
+  for (size_t k = 0; k < a.run.strides.size(); ++k) {
+    const auto& sa = a.run.strides[k];
+    const auto& sb = b.run.strides[k];
+    if (!sa.has_apex || !sb.has_apex) continue;
+    INFO("stride " << k << ": " << sa.apex_height << " vs " << sb.apex_height);
+    CHECK(std::abs(sa.apex_height - sb.apex_height) <= 0.01 * sb.apex_height);
+  }
+  auto within = [](double x, double ref, double abs_tol) {
+    return std::abs(x - ref) <= std::max(0.1 * std::abs(ref), abs_tol);
+  };
+  const auto& fa = a.run.trajectory.back();
+  const auto& fb = b.run.trajectory.back();
+  INFO("tilt " << tilt(fa.euler123) / kDeg << " vs " << tilt(fb.euler123) / kDeg << " deg");
+  CHECK(within(tilt(fa.euler123), tilt(fb.euler123), 0.1 * kDeg));
+  const double lat_a = fa.position.y() - fa.setpoint.y();
+  const double lat_b = fb.position.y() - fb.setpoint.y();
+  INFO("lateral " << lat_a << " vs " << lat_b << " m");
+  CHECK(within(lat_a, lat_b, 1e-3));
 }
