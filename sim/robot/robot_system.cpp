@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 namespace pronk::robot {
 
 namespace pr = pseudorigid;
@@ -31,10 +33,26 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
 }
 
+const Eigen::VectorXd& RobotSystem::min_norm_solve(const Eigen::MatrixXd& A,
+                                                   const Vector3d& b) const {
+  // f = A^T (A A^T)^-1 b while A A^T is well conditioned (the legs' moment arms span the
+  // plane); otherwise the complete orthogonal decomposition's minimum-norm solution.
+  const Eigen::Matrix3d M = A * A.transpose();
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(M);
+  const Vector3d d = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive() && d.minCoeff() > 1e-12 * d.maxCoeff()) {
+    f_ = A.transpose() * ldlt.solve(b);
+  } else {
+    f_ = A.completeOrthogonalDecomposition().solve(b);
+  }
+  return f_;
+}
+
 bool RobotSystem::feedback(const ode::Vec& y) const {
   std::fill(fb_.begin(), fb_.end(), 0.0);
   if (!settings_.stance_feedback() || !settings_.actuators) return false;
-  std::vector<size_t> g;
+  std::vector<size_t>& g = grounded_;
+  g.clear();
   for (size_t i = 0; i < free_.size(); ++i) {
     if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
   }
@@ -59,8 +77,10 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   }
   // Minimum-norm leg forces giving that moment with no net force along the legs'
   // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).
-  Eigen::MatrixXd A(3, static_cast<int>(g.size()));
-  std::vector<Vector3d> u(g.size());
+  Eigen::MatrixXd& A = A_;  // (scratch: no allocation once sized)
+  A.resize(3, static_cast<int>(g.size()));
+  std::vector<Vector3d>& u = u_;
+  u.resize(g.size());
   Vector3d n = Vector3d::Zero();
   for (size_t k = 0; k < g.size(); ++k) {
     u[k] = push_world(g[k], y);
@@ -74,7 +94,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     A(1, static_cast<int>(k)) = m.y();
     A(2, static_cast<int>(k)) = u[k].dot(n);
   }
-  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b);
+  const Eigen::VectorXd& f = min_norm_solve(A, b);
   // A leg can only pull its foot as far as its spring pushes it: the total actuator
   // force stays above minus the spring force (or the set force, if lower), so a foot
   // just landed is not lifted off again.

@@ -88,6 +88,8 @@ class RobotSystem final : public ode::OdeSystem {
   /// Stance attitude feedback: fills fb_ with each leg's extra actuator force
   /// (zero for legs off the ground); false when it is off or no leg is grounded.
   bool feedback(const ode::Vec& y) const;
+  /// The minimum-norm solution of A f = b (A: 3 x legs) into f_.
+  const Eigen::VectorXd& min_norm_solve(const Eigen::MatrixXd& A, const Eigen::Vector3d& b) const;
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
@@ -99,6 +101,10 @@ class RobotSystem final : public ode::OdeSystem {
   std::vector<double> inv_mass_;
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
+  mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)
+  mutable std::vector<Eigen::Vector3d> u_;
+  mutable Eigen::MatrixXd A_;
+  mutable Eigen::VectorXd f_;
   mutable ode::Vec yp_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
 };

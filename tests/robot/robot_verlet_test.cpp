@@ -151,24 +151,23 @@ TEST_CASE("robot on verlet keeps the energy balance at every sample (pr_running)
 }
 
 // Verlet (h = 1e-4 s) against RODAS4 at rtol 1e-8, atol 1e-10 (100x tighter than the
-// scene's), on the first 3 s of pr_running (10 strides; the tight reference costs ~10 s of
-// CPU per simulated second): stride by stride the apex heights within 1 %, and at the end
-// the tilt and the lateral error within 10 % or 0.1 deg / 1 mm. Measured over the full 10 s
-// against the scene's RODAS4: apexes within 0.51 %, final lateral error 3.7 vs 2.9 mm,
-// roll/pitch within 0.02 deg.
-TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running, 3 s)",
-          "[robot][heavy]") {
-  const std::vector<std::string> shortened = {"/simulation/duration=3"};
-  std::vector<std::string> v = shortened, ref = shortened;
-  v.push_back(solver(kVerlet));
-  ref.push_back(solver(R"("method":"rodas4","rtol":1e-8,"atol":1e-10,"h_max":0.01,)"
-                       R"("event_tol":1e-10)"));
+// scene's; ~60 s of CPU for the 10 s) over the whole run of pr_running (46 strides): stride by
+// stride the apex heights within 1 %, and at the end the tilt and the lateral error within
+// 10 % or 0.1 deg / 1 mm (the issue's bars). On the first 3 s alone the end point falls in
+// the transient, where the two differ by 0.25 deg and 5 mm (the scene's own RODAS4 at 1e-6
+// is as far from the reference there). Measured at 10 s: apexes within 0.51 %, tilt 0.544
+// vs 0.562 deg, lateral error -3.7 vs -2.9 mm.
+TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running)", "[robot][heavy]") {
+  const std::vector<std::string> v = {solver(kVerlet)};
+  const std::vector<std::string> ref = {
+      solver(R"("method":"rodas4","rtol":1e-8,"atol":1e-10,"h_max":0.01,)"
+             R"("event_tol":1e-10)")};
   const robot::RobotRunResult a = robot::simulate(load("pr_running.json", v));
   const robot::RobotRunResult b = robot::simulate(load("pr_running.json", ref));
   REQUIRE(a.run.status == reduced::RunStatus::kCompleted);
   REQUIRE(b.run.status == reduced::RunStatus::kCompleted);
   REQUIRE(a.run.strides.size() == b.run.strides.size());
-  REQUIRE(a.run.strides.size() >= 10);
+  REQUIRE(a.run.strides.size() >= 40);
   for (size_t k = 0; k < a.run.strides.size(); ++k) {
     const auto& sa = a.run.strides[k];
     const auto& sb = b.run.strides[k];
