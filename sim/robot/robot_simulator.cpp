@@ -350,6 +350,27 @@ class Observer final : public ode::StepObserver {
   double booked_ = 0.0;  ///< the stepper's booked dissipation at the end of the last step [J]
 };
 
+/// The run's solver options: the scene's, with verlet's energy budget in joules
+/// (energy_tol x the energy scale [J]).
+ode::SolverOptions solver_options(const scene::PseudoRigid& prs, double energy_scale) {
+  ode::SolverOptions solver = prs.solver;
+  if (solver.method == ode::Method::kVerlet) {
+    solver.verlet_energy_budget = prs.energy_tol * energy_scale;
+  }
+  return solver;
+}
+
+/// " (METHOD step H s[; verlet's stability bound])": the numbers of a divergence.
+/// verlet_limit: 2 / (a bound on the highest spring frequency) [s], 0 for other methods.
+std::string divergence_note(ode::Method method, double h, double verlet_limit) {
+  std::string note = " (" + std::string(ode::to_string(method)) + " step " + fmt(h) + " s";
+  if (verlet_limit > 0.0) {
+    note += "; verlet is stable below h = 2/omega_max >= " + fmt(verlet_limit) +
+            " s, omega_max the springs' highest frequency (bound)";
+  }
+  return note + ")";
+}
+
 /// Leg placement for the predicted touchdown: every leg parallel to the net linear
 /// impulse the legs must deliver (body frame, no body-y part), within max_angle of
 /// -z, so the spring rebound pushes where the impulse must go without adding a
@@ -521,24 +542,11 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   const double blowup = 10.0 * result.monitors.energy_scale;
   run.balance0 = balance0;
   run.blowup = blowup;
-  // Method verlet with an energy tolerance: the bound on its bounded term in joules.
-  ode::SolverOptions solver = prs.solver;
-  if (solver.method == ode::Method::kVerlet) {
-    solver.verlet_energy_budget = prs.energy_tol * result.monitors.energy_scale;
-  }
+  const ode::SolverOptions solver = solver_options(prs, result.monitors.energy_scale);
   auto stepper = ode::make_stepper(solver, n);
   const double verlet_limit =
       solver.method == ode::Method::kVerlet ? 2.0 / pr::max_frequency_bound(mech) : 0.0;
-  // The step and, for verlet, its stability limit: the numbers of a divergence.
-  auto step_note = [&]() {
-    std::string note =
-        " (" + std::string(ode::to_string(solver.method)) + " step " + fmt(stepper->h()) + " s";
-    if (verlet_limit > 0.0) {
-      note += "; verlet is stable below h = 2/omega_max >= " + fmt(verlet_limit) +
-              " s, omega_max the springs' highest frequency (bound)";
-    }
-    return note + ")";
-  };
+  auto step_note = [&]() { return divergence_note(solver.method, stepper->h(), verlet_limit); };
 
   auto end_run = [&](reduced::RunStatus status, std::string reason) {
     res.status = status;
