@@ -11,8 +11,18 @@
 //  - ladder: 10 s of running after a moving setpoint from 10 deg roll and a
 //    0.4 m lateral offset (studies/scenes/fidelity_duty15.json: pulse legs as
 //    forces at ghost-point hips, 15 % duty) at each fidelity.
+//  - running (issue 18): studies/scenes/pr_running.json, 10 s simulated, on RODAS4 (the
+//    scene's tolerances) and on Verlet (h_fixed 1.5e-4 s): process CPU
+//    time, median of `repeats` runs each (interleaved), the worst sampled energy balance
+//    relative to the energy scale, and the RODAS4 / Verlet CPU ratio.
+// Usage: bench_robot [repeats [groups]]; groups is "all" (default) or "running".
+#include <time.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "sim/io/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
@@ -79,17 +89,84 @@ void ladder(scene::ModelKind model, bool* first) {
   *first = false;
 }
 
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// pr_running for 10 s on RODAS4 (the scene's settings) and on Verlet, `repeats` interleaved
+/// runs each: median CPU time, and the ratio.
+void running(int repeats, bool* first) {
+  struct Setting {
+    const char* name;
+    std::vector<std::string> set;
+    std::vector<double> cpu;
+    robot::RobotRunResult last;
+  };
+  std::vector<Setting> settings = {
+      {"rodas4", {R"(/pseudo_rigid/solver={"method":"rodas4"})"}, {}, {}},
+      {"verlet", {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})"}, {}, {}}};
+  for (int k = 0; k < repeats; ++k) {
+    for (Setting& st : settings) {
+      std::vector<std::string> set = st.set;
+      set.push_back("/simulation/duration=10");
+      const scene::Scene s = io::load_scene(scene_path("pr_running.json"), set);
+      const double c0 = cpu_seconds();
+      st.last = robot::simulate(s, {true});
+      st.cpu.push_back(cpu_seconds() - c0);
+    }
+  }
+  for (const Setting& st : settings) {
+    const robot::RobotRunResult& r = st.last;
+    double worst = 0.0;  // worst sampled |balance - balance(0)|
+    auto balance = [](const robot::RobotSample& x) {
+      return x.energies.total() + x.dissipated - x.actuator_work;
+    };
+    for (const auto& x : r.samples) {
+      worst = std::max(worst, std::abs(balance(x) - balance(r.samples.front())));
+    }
+    const auto& c = r.run.cost.solver;
+    std::printf(
+        "%s    {\"group\": \"running\", \"method\": \"%s\", \"status\": \"%s\", "
+        "\"t_end\": %.4g, \"repeats\": %d, \"cpu_s_median\": %.4g, \"cpu_s_min\": %.4g, "
+        "\"cpu_s_max\": %.4g, \"steps\": %ld, \"rejected\": %ld, \"rhs\": %ld, "
+        "\"jacobians\": %ld, \"strides\": %zu, \"worst_sample_balance_rel\": %.3g, "
+        "\"energy_drift_rel\": %.3g}",
+        *first ? "" : ",\n", st.name, std::string(reduced::to_string(r.run.status)).c_str(),
+        r.run.t_end, repeats, median(st.cpu), *std::min_element(st.cpu.begin(), st.cpu.end()),
+        *std::max_element(st.cpu.begin(), st.cpu.end()), c.steps_accepted, c.steps_rejected,
+        c.rhs_evaluations, c.jacobian_evaluations, r.run.strides.size(),
+        worst / r.monitors.energy_scale, r.monitors.energy_drift / r.monitors.energy_scale);
+    *first = false;
+  }
+  std::printf(",\n    {\"group\": \"running\", \"rodas4_over_verlet_cpu\": %.4g}",
+              median(settings[0].cpu) / median(settings[1].cpu));
+  std::fflush(stdout);
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  const bool all = argc <= 2 || std::string(argv[2]) == "all";
   std::printf("{\n  \"benchmark\": \"bench_robot\",\n  \"results\": [\n");
   bool first = true;
-  for (double tol : {1e-4, 1e-5, 1e-6}) drop(tol, true, &first);
-  drop(1e-4, false, &first);
-  for (auto m :
-       {scene::ModelKind::kImpulse, scene::ModelKind::kPulse, scene::ModelKind::kPseudoRigid}) {
-    ladder(m, &first);
+  if (all) {
+    for (double tol : {1e-4, 1e-5, 1e-6}) drop(tol, true, &first);
+    drop(1e-4, false, &first);
+    for (auto m :
+         {scene::ModelKind::kImpulse, scene::ModelKind::kPulse, scene::ModelKind::kPseudoRigid}) {
+      ladder(m, &first);
+    }
   }
+  running(repeats, &first);
   std::printf("\n  ]\n}\n");
   return 0;
 }

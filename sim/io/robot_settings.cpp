@@ -86,6 +86,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
     so.max_steps_per_second =
         o.number_or("max_steps_per_second", so.max_steps_per_second, 0.0, 1e15);
+    p.energy_tol = o.number_or("energy_tol", p.energy_tol, 0.0, 0.5);
     std::string err;
     if (!so.validate(&err)) {
       const std::string field = err.substr(0, err.find(':'));
@@ -134,7 +135,8 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"h_initial", so.h_initial},
               {"event_tol", so.event_tol},
               {"max_steps", so.max_steps},
-              {"max_steps_per_second", so.max_steps_per_second}}}};
+              {"max_steps_per_second", so.max_steps_per_second},
+              {"energy_tol", p.energy_tol}}}};
   // "auto" stays "auto" in the resolved scene: the choice depends on the run.
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
@@ -163,6 +165,9 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       }
       if (s.pseudo_rigid.hips == scene::PseudoRigid::Hips::kGhost) {
         out.push_back("/pseudo_rigid/dummy_ratio");
+      }
+      if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
+        out.push_back("/pseudo_rigid/solver/energy_tol");  // verlet's energy budget
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :

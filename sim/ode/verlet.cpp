@@ -72,6 +72,9 @@ class VerletStepper final : public Stepper {
         f_new_(Vec::Zero(n)),
         fd_(Vec::Zero(n)),
         fd_new_(Vec::Zero(n)),
+        fd_prev_(Vec::Zero(n)),
+        slope_a_(Vec::Zero(n)),
+        slope_b_(Vec::Zero(n)),
         p_half_(Vec::Zero(n)),
         y_ref_(Vec::Zero(n)),
         work_(Vec::Zero(n)),
@@ -108,14 +111,15 @@ class VerletStepper final : public Stepper {
     // The dissipative force at the restart point: the mean one of the next opening half step
     // (it has no closing one), so a foot held at the start starts with T_net near zero. The
     // change of T_net, like a step-size switch, enters the switching offset.
+    if (split_) {
+      const double h = h_fixed_ / substeps_;
+      y_ref_ = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
+      y_new_ = y_ref_;
+      sys.dissipate(t_, 0.5 * h, y_, y_new_);
+      fd_ = (2.0 / h) * (y_new_ - y_ref_);
+    }
+    fd_prev_ = fd_;
     if (metric_) {
-      if (split_) {
-        const double h = h_fixed_ / substeps_;
-        y_ref_ = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
-        y_new_ = y_ref_;
-        sys.dissipate(t_, 0.5 * h, y_, y_new_);
-        fd_ = (2.0 / h) * (y_new_ - y_ref_);
-      }
       double k_net = 0.0, k_gap = 0.0;
       net_terms(sys, f_, fd_, &k_net, &k_gap);
       // Before the first step T_net is taken on the rung's step (no switch yet).
@@ -188,6 +192,7 @@ class VerletStepper final : public Stepper {
     y_.swap(y_new_);
     f_prev_.swap(f_);
     f_.swap(f_new_);
+    fd_prev_.swap(fd_);
     fd_.swap(fd_new_);
     t_prev_ = t_;
     t_ = t_new_;
@@ -212,8 +217,17 @@ class VerletStepper final : public Stepper {
     return StepStatus::kOk;
   }
 
+  /// Cubic Hermite on the step; with the dissipation split the momentum slopes include the
+  /// mean dissipative forces, so the interpolant follows the damped momenta (an event located
+  /// inside a step of a foot held by friction restarts from consistent momenta).
   void dense(double t, Vec& y_out) const override {
-    hermite_dense(t, t_prev_, t_, y_prev_, f_prev_, y_, f_, y_out);
+    if (!split_) {
+      hermite_dense(t, t_prev_, t_, y_prev_, f_prev_, y_, f_, y_out);
+      return;
+    }
+    slope_a_ = f_prev_ + fd_prev_;
+    slope_b_ = f_ + fd_;
+    hermite_dense(t, t_prev_, t_, y_prev_, slope_a_, y_, slope_b_, y_out);
   }
 
   double t() const override { return t_; }
@@ -361,17 +375,19 @@ class VerletStepper final : public Stepper {
   bool last_ = false;          ///< the current grid step ends at the caller's t_limit
   long steps_since_base_ = 0;  ///< grid steps taken on the current grid
   Vec y_, y_prev_, y_new_;
-  Vec f_, f_prev_, f_new_;      ///< f at t_, t_prev_ and the new point
-  Vec fd_, fd_new_;             ///< mean dissipative force of the closing half step [N]
-  Vec p_half_;                  ///< state after the drift (momenta at the half step)
-  Vec y_ref_;                   ///< split: the state before the closing dissipative update
-  Vec work_;                    ///< scratch: the net force
-  Vec mask_;                    ///< 1 on momentum states, 0 on positions
-  Vec q_mask_;                  ///< 1 - mask_
-  bool split_ = false;          ///< the system's dissipation split is applied
-  int block_ = 1;               ///< momentum entries per rotation block
-  bool metric_ = false;         ///< T_net is tracked (a metric, and a split or a budget)
-  double k_net_ = 0.0;          ///< kinetic energy of the held force at t_ [N^2/kg]
+  Vec f_, f_prev_, f_new_;         ///< f at t_, t_prev_ and the new point
+  Vec fd_, fd_new_;                ///< mean dissipative force of the closing half step [N]
+  Vec fd_prev_;                    ///< fd_ at t_prev_ [N]
+  mutable Vec slope_a_, slope_b_;  ///< dense(): the momentum slopes with the dissipation
+  Vec p_half_;                     ///< state after the drift (momenta at the half step)
+  Vec y_ref_;                      ///< split: the state before the closing dissipative update
+  Vec work_;                       ///< scratch: the net force
+  Vec mask_;                       ///< 1 on momentum states, 0 on positions
+  Vec q_mask_;                     ///< 1 - mask_
+  bool split_ = false;             ///< the system's dissipation split is applied
+  int block_ = 1;                  ///< momentum entries per rotation block
+  bool metric_ = false;            ///< T_net is tracked (a metric, and a split or a budget)
+  double k_net_ = 0.0;             ///< kinetic energy of the held force at t_ [N^2/kg]
   double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_ [N^2/kg]
   int grid_steps_at_rung_ = 0;  ///< grid steps taken since the rung last changed
   double h_last_ = 0.0;         ///< size of the last accepted step [s]

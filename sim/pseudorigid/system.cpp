@@ -882,6 +882,18 @@ std::vector<double> MechanismSystem::surface_forces(const ode::Vec& y) const {
   return out;
 }
 
+MechanismSystem::Contact MechanismSystem::contact(int surface, const NodeRef& n,
+                                                  const ode::Vec& y) const {
+  const Surface& s = m_.surfaces[static_cast<size_t>(surface)];
+  Contact c;
+  if (s.body >= 0) return c;  // grounded planes only
+  const SurfaceEval e = eval_surface(s, n, y);
+  if (!e.active) return c;
+  c.normal = std::max(0.0, e.dir.dot(e.force - e.friction));
+  c.friction = e.friction;
+  return c;
+}
+
 double jacobian_check(const MechanismSystem& sys, double t, const ode::Vec& y, int* worst_row,
                       int* worst_col) {
   const int n = sys.dimension();

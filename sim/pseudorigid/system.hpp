@@ -89,6 +89,13 @@ class MechanismSystem final : public ode::OdeSystem {
   StateMonitors monitors(const ode::Vec& y) const;
   /// Largest contact force magnitude of each surface at y [N].
   std::vector<double> surface_forces(const ode::Vec& y) const;
+  /// A grounded plane's contact on node n at y: its normal force N >= 0 [N] (spring and
+  /// damper) and its friction force [N] (world); both zero off contact.
+  struct Contact {
+    double normal = 0.0;
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();
+  };
+  Contact contact(int surface, const NodeRef& n, const ode::Vec& y) const;
   /// energies(), monitors() and surface_forces() in one pass (each surface evaluated once);
   /// null outputs are skipped; surface_max (sized to the surfaces) is raised to the forces
   /// at y, not overwritten.

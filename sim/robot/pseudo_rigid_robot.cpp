@@ -123,6 +123,8 @@ RobotModel build_robot(const scene::Scene& s) {
     for (int f : r.foot) ground.nodes.push_back(pr::NodeRef{pr::NodeRef::Kind::kMass, f});
     ground.stiffness = p.contact_stiffness;
     ground.damping = p.contact_damping;
+    ground.friction = p.friction;  // regularised Coulomb on the feet
+    ground.slip_velocity = p.slip_velocity;
     r.ground = static_cast<int>(m.surfaces.size());
     m.surfaces.push_back(ground);
   }

@@ -4,8 +4,9 @@
 // force and moment as gravity at the CoM), and per leg either nothing but a
 // force at the hip (`force` legs, seed 2.7) or a foot mass on a line through
 // the hip (prismatic leg) with a leg spring and damper, on the ground plane
-// z = 0 (`spring` legs, seed 2.8). The leg actuators, foot friction and hip
-// placement are run-time inputs of RobotSystem (robot_system.hpp).
+// z = 0 with regularised Coulomb friction on the feet (`spring` legs, seed 2.8).
+// The leg actuators and hip placement are run-time inputs of RobotSystem
+// (robot_system.hpp).
 #pragma once
 
 #include <string>

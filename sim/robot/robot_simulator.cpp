@@ -9,6 +9,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/math/rotation.hpp"
+#include "sim/pseudorigid/stability.hpp"
 #include "sim/robot/robot_system.hpp"
 
 namespace pronk::robot {
@@ -167,7 +168,10 @@ struct Run {
   RobotRunResult& out;
   bool record = true;
   double dissipated = 0.0, work = 0.0;
-  double positive_work = 0.0;  ///< leg actuators' positive work up to now [J]
+  double positive_work = 0.0;  ///< leg actuators' work, positive steps only [J]
+  double balance0 = 0.0;  ///< energy balance at the start [J]
+  /// The worst sampled departure of the balance [J] and where it first exceeded `blowup`.
+  double sampled_drift = 0.0, blowup = 0.0, blowup_time = -1.0, blowup_drift = 0.0;
   bool stance = false;
   std::vector<bool> in_contact;
   std::vector<Eigen::Vector2d> contact_start;
@@ -187,7 +191,18 @@ struct Run {
     return s;
   }
 
-  void sample(double t, const ode::Vec& y) {
+  /// The energy balance at a sample time t with the flows up to t: its departure from the
+  /// start enters the drift monitor (and the blow-up check); with `record` the sample is kept.
+  void sample(double t, const ode::Vec& y, double dissipated_t, double work_t) {
+    const pr::Energies e = msys.energies(y);
+    const double drift =
+        std::abs(e.total() + dissipated_t - work_t - out.monitors.hip_work - balance0);
+    sampled_drift = std::max(sampled_drift, std::isfinite(drift) ? drift : 1e300);
+    if (blowup_time < 0.0 && !(drift <= blowup)) {
+      blowup_time = t;
+      blowup_drift = drift;
+    }
+    if (!record) return;
     const control::BodyState s = body_state(y);
     reduced::Sample smp;
     smp.t = t;
@@ -199,9 +214,9 @@ struct Run {
     smp.stance = stance;
     RobotSample rs;
     rs.t = t;
-    rs.energies = msys.energies(y);
-    rs.dissipated = dissipated;
-    rs.actuator_work = work + out.monitors.hip_work;
+    rs.energies = e;
+    rs.dissipated = dissipated_t;
+    rs.actuator_work = work_t + out.monitors.hip_work;
     rs.actuator_force = sys.actuator_forces(y);
     for (size_t i = 0; i < model.hip.size(); ++i) {
       // Σ actuator forces on the body (world), as the reduced models' leg force.
@@ -221,8 +236,6 @@ struct Run {
     out.monitors.max_strain = std::max(out.monitors.max_strain, m.max_strain);
     out.monitors.max_penetration = std::max(out.monitors.max_penetration, m.max_penetration);
     if (!model.spring_legs) return;
-    const std::vector<double> n = sys.normal_forces(y);
-    const std::vector<Vector3d> ft = sys.friction_forces(y);
     for (size_t i = 0; i < model.foot.size(); ++i) {
       const int f = model.foot[i];
       const Eigen::Vector2d xy = y.segment<2>(6 * f);
@@ -232,9 +245,11 @@ struct Run {
         const double slip = (xy - contact_start[i]).norm();
         stride_slip = std::max(stride_slip, slip);
         out.monitors.max_slip = std::max(out.monitors.max_slip, slip);
-        if (n[i] > 0.0) {
+        const pr::MechanismSystem::Contact c =
+            msys.contact(model.ground, pr::NodeRef{pr::NodeRef::Kind::kMass, f}, y);
+        if (c.normal > 0.0) {
           out.monitors.max_friction_ratio =
-              std::max(out.monitors.max_friction_ratio, ft[i].norm() / n[i]);
+              std::max(out.monitors.max_friction_ratio, c.friction.norm() / c.normal);
         }
       } else {
         in_contact[i] = false;
@@ -251,42 +266,127 @@ void book_hip_work(RobotMonitors& m, double dE) {
   m.positive_hip_work += std::max(0.0, dE);
 }
 
+/// Energy flows, monitors and samples along the accepted steps. Method verlet books both
+/// flows as its steps do: the dissipation is the stepper's own (OdeSystem::dissipate), the
+/// actuator work 1/2 (F_a + F_b) . (x_b - x_a) over the masses with the actuator forces F at
+/// the step's ends (then E - T + D - W is exact for quadratic potentials, T Verlet's bounded
+/// term; docs/pseudorigid.md), both linear in time within a step. Other methods integrate
+/// the dissipated and actuator power by Gauss-Legendre on the dense output. A sample inside
+/// a step pairs its state with the flows up to the sample time.
 class Observer final : public ode::StepObserver {
  public:
-  Observer(Run& run, double interval, int n) : run_(run), interval_(interval), yq_(n) {}
+  Observer(Run& run, double interval, int n, bool verlet)
+      : run_(run), interval_(interval), verlet_(verlet), yq_(n), ya_(n), fa_(n / 2), fb_(n / 2) {}
   void on_step(const ode::Stepper& st, double t_stop) override {
     const double ta = st.t_prev(), tb = t_stop;
-    static const double s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
-    static const double w[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-    for (int q = 0; q < 3; ++q) {
-      st.dense(ta + s[q] * (tb - ta), yq_);
-      const pr::PowerFlows p = run_.msys.power(yq_);
-      const ExtraPower e = run_.sys.power(yq_);
-      run_.dissipated += w[q] * (tb - ta) * (p.dissipated + e.friction);
-      run_.work += w[q] * (tb - ta) * (p.actuator + e.actuator);
-      run_.positive_work += w[q] * (tb - ta) * std::max(0.0, p.actuator + e.actuator);
+    const double d_a = run_.dissipated, w_a = run_.work;
+    double step_d = 0.0, step_w = 0.0;  // the whole step's flows (verlet) [J]
+    if (verlet_) {
+      const double booked = st.booked_dissipation();
+      step_d = booked - booked_;
+      booked_ = booked;
+      step_w = verlet_work(st);
     }
+    flows(st, ta, tb, step_d, step_w, &run_.dissipated, &run_.work);
+    run_.positive_work += std::max(0.0, run_.work - w_a);
     st.dense(tb, yq_);
     run_.monitor(yq_);
-    if (!run_.record) return;
     while (next_ <= tb + 1e-12 * std::max(1.0, tb)) {
-      st.dense(std::min(next_, tb), yq_);
-      run_.sample(next_, yq_);
+      const double ts = std::min(next_, tb);
+      double d = d_a, w = w_a;
+      flows(st, ta, ts, step_d, step_w, &d, &w);
+      st.dense(ts, yq_);
+      run_.sample(next_, yq_, d, w);
       next_ = interval_ * static_cast<double>(++count_);
     }
   }
-  void start(const ode::Vec& y) {
-    if (run_.record) run_.sample(0.0, y);
+  void start(const ode::Stepper& st, const ode::Vec& y) {
+    booked_ = st.booked_dissipation();
+    run_.sample(0.0, y, run_.dissipated, run_.work);
     next_ = interval_ * static_cast<double>(++count_);
   }
+  /// The stepper restarts (a new state or new actuator forces): the next step's start
+  /// forces are evaluated afresh.
+  void restart() { have_fa_ = false; }
 
  private:
+  /// Adds the flows over [ta, te] of the current step (which ends at st.t()) to *d and *w;
+  /// verlet: the fraction of the step's flows step_d, step_w [J].
+  void flows(const ode::Stepper& st, double ta, double te, double step_d, double step_w, double* d,
+             double* w) {
+    if (verlet_) {
+      const double frac = st.t() > ta ? (te - ta) / (st.t() - ta) : 1.0;
+      *d += frac * step_d;
+      *w += frac * step_w;
+      return;
+    }
+    static const double s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
+    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    for (int q = 0; q < 3; ++q) {
+      st.dense(ta + s[q] * (te - ta), yq_);
+      const double wq = gw[q] * (te - ta);
+      const pr::PowerFlows p = run_.msys.power(yq_);
+      *d += wq * p.dissipated;
+      *w += wq * (p.actuator + run_.sys.actuator_power(yq_));
+    }
+  }
+
+  /// Verlet's actuator work over its last step [J] (see the class comment); the forces at
+  /// the step's end are kept for the next step's start.
+  double verlet_work(const ode::Stepper& st) {
+    if (!have_fa_) {
+      st.dense(st.t_prev(), ya_);  // the step's start (the dense output's end point)
+      on_a_ = run_.sys.actuator_mass_forces(ya_, fa_);
+    }
+    const ode::Vec& yb = st.y();
+    const bool on_b = run_.sys.actuator_mass_forces(yb, fb_);
+    double w = 0.0;
+    const int nm = static_cast<int>(fa_.size() / 3);
+    for (int j = 0; j < nm; ++j) {
+      Vector3d f = Vector3d::Zero();
+      if (on_a_) f += fa_.segment<3>(3 * j);
+      if (on_b) f += fb_.segment<3>(3 * j);
+      w += 0.5 * f.dot(yb.segment<3>(6 * j) - ya_.segment<3>(6 * j));
+    }
+    ya_ = yb;
+    fa_.swap(fb_);
+    on_a_ = on_b;
+    have_fa_ = true;
+    return w;
+  }
+
   Run& run_;
   double interval_;
+  bool verlet_;
   ode::Vec yq_;
+  ode::Vec ya_, fa_, fb_;  ///< verlet: the step's start state and the actuator forces at its ends
+  bool on_a_ = false;      ///< fa_ holds forces (actuators act at the step's start)
+  bool have_fa_ = false;   ///< ya_ and fa_ are the current step's start
   double next_ = 0.0;
   long count_ = 0;
+  double booked_ = 0.0;  ///< the stepper's booked dissipation at the end of the last step [J]
 };
+
+/// The run's solver options: the scene's, with verlet's energy budget in joules
+/// (energy_tol x the energy scale [J]).
+ode::SolverOptions solver_options(const scene::PseudoRigid& prs, double energy_scale) {
+  ode::SolverOptions solver = prs.solver;
+  if (solver.method == ode::Method::kVerlet) {
+    solver.verlet_energy_budget = prs.energy_tol * energy_scale;
+  }
+  return solver;
+}
+
+/// " (METHOD step H s[; verlet's stability bound])": the numbers of a divergence.
+/// verlet_limit: 2 / (a bound on the highest spring frequency) [s], 0 for other methods.
+std::string divergence_note(ode::Method method, double h, double verlet_limit) {
+  std::string note = " (" + std::string(ode::to_string(method)) + " step " + fmt(h) + " s";
+  if (verlet_limit > 0.0) {
+    note += "; verlet is stable below h = 2/omega_max >= " + fmt(verlet_limit) +
+            " s, omega_max the springs' highest frequency (bound)";
+  }
+  return note + ")";
+}
 
 /// Leg placement for the predicted touchdown: every leg parallel to the net linear
 /// impulse the legs must deliver (body frame, no body-y part), within max_angle of
@@ -399,7 +499,6 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     return control::StanceContext{*L.scene, b, *L.legs};
   };
 
-  auto stepper = ode::make_stepper(prs.solver, n);
   ode::Vec y = mech.initial_state();
 
   Run run{scene, model, sys, msys, result};
@@ -408,7 +507,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   run.contact_start.assign(legs, Eigen::Vector2d::Zero());
   run.push.assign(legs, Vector3d::UnitZ());
   for (size_t i = 0; i < legs; ++i) run.push[i] = -model.direction[i];
-  Observer observer(run, sim.sample_interval, n);
+  Observer observer(run, sim.sample_interval, n,
+                    prs.solver.method == ode::Method::kVerlet && sys.has_dissipation_split());
 
   ComHeightEvent touchdown(model, l);
   ApexEvent apex(model);
@@ -458,6 +558,13 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       total_mass * g * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
   const double balance0 = msys.energies(y).total();
   const double blowup = 10.0 * result.monitors.energy_scale;
+  run.balance0 = balance0;
+  run.blowup = blowup;
+  const ode::SolverOptions solver = solver_options(prs, result.monitors.energy_scale);
+  auto stepper = ode::make_stepper(solver, n);
+  const double verlet_limit =
+      solver.method == ode::Method::kVerlet ? 2.0 / pr::max_frequency_bound(mech) : 0.0;
+  auto step_note = [&]() { return divergence_note(solver.method, stepper->h(), verlet_limit); };
 
   auto end_run = [&](reduced::RunStatus status, std::string reason) {
     res.status = status;
@@ -582,7 +689,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   // A run starting in the air places its legs for the first touchdown.
   if (model.spring_legs && prs.hip_rotation) place_legs(t, y);
   stepper->reset(sys, t, y);
-  observer.start(y);
+  observer.start(*stepper, y);
   bool running = true;
   while (running) {
     double t_target = sim.duration;
@@ -610,11 +717,13 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     y = stepper->y();
     switch (r.reason) {
       case ode::StopReason::kStepSizeCollapse:
-        end_run(reduced::RunStatus::kDiverged, "step-size collapse at t = " + fmt(t) + " s");
+        end_run(reduced::RunStatus::kDiverged,
+                "step-size collapse at t = " + fmt(t) + " s" + step_note());
         running = false;
         continue;
       case ode::StopReason::kNonFinite:
-        end_run(reduced::RunStatus::kDiverged, "non-finite state at t = " + fmt(t) + " s");
+        end_run(reduced::RunStatus::kDiverged,
+                "non-finite state at t = " + fmt(t) + " s" + step_note());
         running = false;
         continue;
       case ode::StopReason::kMaxSteps:
@@ -642,15 +751,21 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     }
     const double balance =
         msys.energies(y).total() + run.dissipated - run.work - result.monitors.hip_work;
-    const double drift = std::abs(balance - balance0);
-    if (!y.allFinite() || !std::isfinite(balance) || drift > blowup) {
+    double drift = std::abs(balance - balance0);
+    double t_blowup = t;
+    if (run.blowup_time >= 0.0) {  // a sample on the way blew up first
+      drift = run.blowup_drift;
+      t_blowup = run.blowup_time;
+    }
+    if (!y.allFinite() || !std::isfinite(balance) || !(drift <= blowup)) {
       end_run(reduced::RunStatus::kDiverged,
-              "energy blow-up at t = " + fmt(t) + " s: the balance drifted by " + fmt(drift) +
-                  " J (scale " + fmt(result.monitors.energy_scale) +
-                  " J); stiffness too high for the solver or the step too large");
+              "energy blow-up at t = " + fmt(t_blowup) + " s: the balance drifted by " +
+                  fmt(drift) + " J (scale " + fmt(result.monitors.energy_scale) +
+                  " J); stiffness too high for the solver or the step too large" + step_note());
       break;
     }
-    result.monitors.energy_drift = std::max(result.monitors.energy_drift, drift);
+    result.monitors.energy_drift =
+        std::max({result.monitors.energy_drift, drift, run.sampled_drift});
     const int event = r.reason == ode::StopReason::kEvent ? ids[r.event_index] : -1;
     if (event == kFallLow) {
       end_run(reduced::RunStatus::kFell,
@@ -865,7 +980,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       }
       if (t >= sim.duration) running = false;
     }
-    if (running) stepper->reset(sys, t, y);
+    if (running) {
+      observer.restart();
+      stepper->reset(sys, t, y);
+    }
   }
   if (have_stride && !current.has_apex) {
     current.P_delivered = total_momentum(y) - p_touchdown +

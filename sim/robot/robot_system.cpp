@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 namespace pronk::robot {
 
 namespace pr = pseudorigid;
@@ -23,14 +25,6 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
   extra_ = fp_ = fm_ = ode::Vec::Zero(3 * nm);
 }
 
-double RobotSystem::normal_force(const ode::Vec& y, int foot) const {
-  const double z = y[6 * foot + 2];
-  if (z >= 0.0) return 0.0;
-  const double vz = y[6 * foot + 5] * inv_mass_[foot];
-  const auto& g = model_.mechanism.surfaces[model_.ground];
-  return std::max(0.0, -g.stiffness * z - g.damping * vz);
-}
-
 Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
   const Eigen::Matrix3d& R = sys_.frames(y)[model_.body].rotation;
   if (!free_[i] || model_.foot[i] < 0) return R * push_[i];
@@ -39,10 +33,26 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
 }
 
+const Eigen::VectorXd& RobotSystem::min_norm_solve(const Eigen::MatrixXd& A,
+                                                   const Vector3d& b) const {
+  // f = A^T (A A^T)^-1 b while A A^T is well conditioned (the legs' moment arms span the
+  // plane); otherwise the complete orthogonal decomposition's minimum-norm solution.
+  const Eigen::Matrix3d M = A * A.transpose();
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(M);
+  const Vector3d d = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive() && d.minCoeff() > 1e-12 * d.maxCoeff()) {
+    f_ = A.transpose() * ldlt.solve(b);
+  } else {
+    f_ = A.completeOrthogonalDecomposition().solve(b);
+  }
+  return f_;
+}
+
 bool RobotSystem::feedback(const ode::Vec& y) const {
   std::fill(fb_.begin(), fb_.end(), 0.0);
   if (!settings_.stance_feedback() || !settings_.actuators) return false;
-  std::vector<size_t> g;
+  std::vector<size_t>& g = grounded_;
+  g.clear();
   for (size_t i = 0; i < free_.size(); ++i) {
     if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
   }
@@ -67,8 +77,10 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   }
   // Minimum-norm leg forces giving that moment with no net force along the legs'
   // mean direction: A f = b, A = [(r_i x u_i)_x; (r_i x u_i)_y; u_i . n] (body frame).
-  Eigen::MatrixXd A(3, static_cast<int>(g.size()));
-  std::vector<Vector3d> u(g.size());
+  Eigen::MatrixXd& A = A_;  // (scratch: no allocation once sized)
+  A.resize(3, static_cast<int>(g.size()));
+  std::vector<Vector3d>& u = u_;
+  u.resize(g.size());
   Vector3d n = Vector3d::Zero();
   for (size_t k = 0; k < g.size(); ++k) {
     u[k] = push_world(g[k], y);
@@ -82,7 +94,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     A(1, static_cast<int>(k)) = m.y();
     A(2, static_cast<int>(k)) = u[k].dot(n);
   }
-  const Eigen::VectorXd f = A.completeOrthogonalDecomposition().solve(b);
+  const Eigen::VectorXd& f = min_norm_solve(A, b);
   // A leg can only pull its foot as far as its spring pushes it: the total actuator
   // force stays above minus the spring force (or the set force, if lower), so a foot
   // just landed is not lifted off again.
@@ -109,77 +121,62 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   const bool fb = feedback(y);
   bool any = fb;
   for (size_t i = 0; i < force_.size(); ++i) any = any || force_[i] != 0.0;
-  const bool friction = settings_.friction > 0.0 && model_.spring_legs;
-  if (!any && !friction) return false;
+  if (!any) return false;
   f.setZero();
-  if (any) {
-    const auto& body = model_.mechanism.bodies[model_.body];
-    for (size_t i = 0; i < force_.size(); ++i) {
-      double fi = force_[i] + fb_[i];
-      if (settings_.actuator_max_force > 0.0) {
-        fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
-      }
-      if (fi == 0.0) continue;
-      const Vector3d F = fi * push_world(i, y);  // on the body at the hip
-      const pr::NodeRef& h = model_.hip_node[i];
-      if (h.kind == pr::NodeRef::Kind::kMass) {
-        f.segment<3>(3 * h.index) += F;
-      } else {
-        const auto& g = model_.mechanism.ghost_points[h.index];
-        for (int k = 0; k < 4; ++k) f.segment<3>(3 * (body.first_mass + k)) += g.weights[k] * F;
-      }
-      if (model_.foot[i] >= 0) f.segment<3>(3 * model_.foot[i]) -= F;
+  const auto& body = model_.mechanism.bodies[model_.body];
+  for (size_t i = 0; i < force_.size(); ++i) {
+    double fi = force_[i] + fb_[i];
+    if (settings_.actuator_max_force > 0.0) {
+      fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
     }
-  }
-  if (friction) {
-    const double vs2 = settings_.slip_velocity * settings_.slip_velocity;
-    for (int foot : model_.foot) {
-      const double n = normal_force(y, foot);
-      if (n <= 0.0) continue;
-      const Eigen::Vector2d vt = y.segment<2>(6 * foot + 3) * inv_mass_[foot];
-      const Eigen::Vector2d ft = -settings_.friction * n * vt / std::sqrt(vt.squaredNorm() + vs2);
-      f.segment<2>(3 * foot) += ft;
+    if (fi == 0.0) continue;
+    const Vector3d F = fi * push_world(i, y);  // on the body at the hip
+    const pr::NodeRef& h = model_.hip_node[i];
+    if (h.kind == pr::NodeRef::Kind::kMass) {
+      f.segment<3>(3 * h.index) += F;
+    } else {
+      const auto& g = model_.mechanism.ghost_points[h.index];
+      for (int k = 0; k < 4; ++k) f.segment<3>(3 * (body.first_mass + k)) += g.weights[k] * F;
     }
+    if (model_.foot[i] >= 0) f.segment<3>(3 * model_.foot[i]) -= F;
   }
   return true;
 }
 
-void RobotSystem::rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
-  sys_.rhs(t, y, dydt);
+void RobotSystem::add_extra(const ode::Vec& y, ode::Vec& dydt) const {
   if (!extra_forces(y, extra_)) return;
   const int nm = static_cast<int>(inv_mass_.size());
   for (int j = 0; j < nm; ++j) dydt.segment<3>(6 * j + 3) += extra_.segment<3>(3 * j);
 }
 
+void RobotSystem::rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
+  sys_.rhs(t, y, dydt);
+  add_extra(y, dydt);
+}
+
+void RobotSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
+  sys_.conservative_rhs(t, y, dydt);
+  add_extra(y, dydt);
+}
+
 void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const {
   sys_.jacobian(t, y, J);
   if (!extra_forces(y, extra_)) return;
-  // Columns the extra forces read: the body masses' positions (attitude turns the
-  // actuator forces) and each foot's height and momentum (normal force, slip).
+  // Columns the actuator forces read: the body masses' positions (attitude turns the
+  // forces) and, with the feedback, their momenta (angular velocity); a free leg's push
+  // direction follows its foot (and a dummy hip mass).
   std::vector<int> cols;
   const int first = model_.mechanism.bodies[model_.body].first_mass;
   const bool fb = feedback(y);
-  bool any = fb;
-  for (double fi : force_) any = any || fi != 0.0;
-  if (any) {
-    for (int k = 0; k < 4; ++k) {
-      // The feedback reads the body's angular velocity: its masses' momenta too.
-      for (int c = 0; c < (fb ? 6 : 3); ++c) cols.push_back(6 * (first + k) + c);
-    }
-    // A free leg's push direction follows its foot (and a dummy hip mass).
-    for (size_t i = 0; i < force_.size(); ++i) {
-      if ((force_[i] == 0.0 && !fb) || !free_[i] || model_.foot[i] < 0) continue;
-      for (int c = 0; c < 3; ++c) cols.push_back(6 * model_.foot[i] + c);
-      const pr::NodeRef& h = model_.hip_node[i];
-      if (h.kind == pr::NodeRef::Kind::kMass) {
-        for (int c = 0; c < 3; ++c) cols.push_back(6 * h.index + c);
-      }
-    }
+  for (int k = 0; k < 4; ++k) {
+    for (int c = 0; c < (fb ? 6 : 3); ++c) cols.push_back(6 * (first + k) + c);
   }
-  if (settings_.friction > 0.0 && model_.spring_legs) {
-    for (int foot : model_.foot) {
-      if (y[6 * foot + 2] >= 0.0 && !(normal_force(y, foot) > 0.0)) continue;
-      for (int c : {2, 3, 4, 5}) cols.push_back(6 * foot + c);
+  for (size_t i = 0; i < force_.size(); ++i) {
+    if ((force_[i] == 0.0 && !fb) || !free_[i] || model_.foot[i] < 0) continue;
+    for (int c = 0; c < 3; ++c) cols.push_back(6 * model_.foot[i] + c);
+    const pr::NodeRef& h = model_.hip_node[i];
+    if (h.kind == pr::NodeRef::Kind::kMass) {
+      for (int c = 0; c < 3; ++c) cols.push_back(6 * h.index + c);
     }
   }
   std::sort(cols.begin(), cols.end());  // each column once (central differences add up)
@@ -207,45 +204,33 @@ void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<doub
   J += E;
 }
 
-ExtraPower RobotSystem::power(const ode::Vec& y) const {
-  ExtraPower p;
-  if (!extra_forces(y, extra_)) return p;
-  // Total power of the extra forces minus the friction part is the actuators' power.
+double RobotSystem::actuator_power(const ode::Vec& y) const {
+  if (!extra_forces(y, extra_)) return 0.0;
   const int nm = static_cast<int>(inv_mass_.size());
   double total = 0.0;
   for (int j = 0; j < nm; ++j) {
     total += extra_.segment<3>(3 * j).dot(y.segment<3>(6 * j + 3) * inv_mass_[j]);
   }
-  const std::vector<Vector3d> fr = friction_forces(y);
-  double friction_power = 0.0;
-  for (size_t i = 0; i < model_.foot.size(); ++i) {
-    const int foot = model_.foot[i];
-    if (foot < 0) continue;
-    friction_power += fr[i].dot(y.segment<3>(6 * foot + 3) * inv_mass_[foot]);
-  }
-  p.friction = -friction_power;
-  p.actuator = total - friction_power;
-  return p;
+  return total;
 }
 
 std::vector<Vector3d> RobotSystem::friction_forces(const ode::Vec& y) const {
   std::vector<Vector3d> out(model_.foot.size(), Vector3d::Zero());
-  if (!(settings_.friction > 0.0) || !model_.spring_legs) return out;
-  const double vs2 = settings_.slip_velocity * settings_.slip_velocity;
+  if (model_.ground < 0) return out;
   for (size_t i = 0; i < model_.foot.size(); ++i) {
-    const int foot = model_.foot[i];
-    const double n = normal_force(y, foot);
-    if (n <= 0.0) continue;
-    const Eigen::Vector2d vt = y.segment<2>(6 * foot + 3) * inv_mass_[foot];
-    out[i].head<2>() = -settings_.friction * n * vt / std::sqrt(vt.squaredNorm() + vs2);
+    const pr::NodeRef foot{pr::NodeRef::Kind::kMass, model_.foot[i]};
+    out[i] = sys_.contact(model_.ground, foot, y).friction;
   }
   return out;
 }
 
 std::vector<double> RobotSystem::normal_forces(const ode::Vec& y) const {
   std::vector<double> out(model_.foot.size(), 0.0);
-  if (!model_.spring_legs) return out;
-  for (size_t i = 0; i < model_.foot.size(); ++i) out[i] = normal_force(y, model_.foot[i]);
+  if (model_.ground < 0) return out;
+  for (size_t i = 0; i < model_.foot.size(); ++i) {
+    const pr::NodeRef foot{pr::NodeRef::Kind::kMass, model_.foot[i]};
+    out[i] = sys_.contact(model_.ground, foot, y).normal;
+  }
   return out;
 }
 

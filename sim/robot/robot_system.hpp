@@ -1,10 +1,13 @@
-// The robot as an ODE system: the mechanism's own forces (MechanismSystem) plus
-// the run-time inputs a controller drives: leg actuator forces (along each leg,
-// on the hip and, for spring legs, the opposite force on the foot; along the
-// current foot -> hip line while the leg's hip is free) and Coulomb
-// friction on the feet, regularised F_t = -mu N v_t / sqrt(|v_t|^2 + v_s^2)
-// with N the ground's normal force. The Jacobian is the mechanism's analytic one
-// plus central differences of these extra forces over the states they read.
+// The robot as an ODE system: the mechanism's own forces (MechanismSystem: body,
+// leg springs and dampers, slides, ground contact with its regularised Coulomb foot
+// friction F_t = -mu N v_t / sqrt(|v_t|^2 + v_s^2)) plus the run-time inputs a
+// controller drives: leg actuator forces (along each leg, on the hip and, for spring
+// legs, the opposite force on the foot; along the current foot -> hip line while the
+// leg's hip is free) and the stance attitude feedback through them. The Jacobian is
+// the mechanism's analytic one plus central differences of the actuator forces over
+// the states they read. For the symplectic stepper the mechanism's structure is
+// forwarded: its dissipation split (dampers and friction as implicit velocity updates),
+// kinetic-energy metric and momentum blocks; the actuator forces stay in the kicks.
 #pragma once
 
 #include <vector>
@@ -13,12 +16,6 @@
 #include "sim/robot/pseudo_rigid_robot.hpp"
 
 namespace pronk::robot {
-
-/// Power flows of the extra forces [W].
-struct ExtraPower {
-  double actuator = 0.0;  ///< work rate of the leg actuators
-  double friction = 0.0;  ///< dissipated by foot friction (>= 0)
-};
 
 class RobotSystem final : public ode::OdeSystem {
  public:
@@ -41,6 +38,17 @@ class RobotSystem final : public ode::OdeSystem {
                     double atol) const override {
     return sys_.error_norm(err, y0, y1, rtol, atol);
   }
+  double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
+  int momentum_block() const override { return sys_.momentum_block(); }
+  /// The mechanism's dissipation split. The actuator forces (the stance feedback's kd
+  /// part included) stay in the kicks: they act on the body's rotation, kd / I ~ 1e2 1/s,
+  /// far from stiff at the steps the springs allow.
+  bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
+  void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
+  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override {
+    return sys_.dissipate(t, h, y_ref, y);
+  }
+  void correct_step(const ode::Vec& y0, ode::Vec& y1) const override { sys_.correct_step(y0, y1); }
 
   /// Signed actuator force of each leg [N] (positive pushes the body away from
   /// the foot) along the unit body-frame push direction `push` (= -leg direction).
@@ -62,19 +70,26 @@ class RobotSystem final : public ode::OdeSystem {
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
-  ExtraPower power(const ode::Vec& y) const;
+  /// Work rate of the leg actuators at y [W] (friction and dampers are the mechanism's).
+  double actuator_power(const ode::Vec& y) const;
+  /// The leg actuators' forces on the masses at y (3 per mass) [N] into f (sized 3 x
+  /// masses); false (f untouched) when none acts.
+  bool actuator_mass_forces(const ode::Vec& y, ode::Vec& f) const { return extra_forces(y, f); }
   /// Friction force on each foot (world) [N]; zero vectors off the ground.
   std::vector<Eigen::Vector3d> friction_forces(const ode::Vec& y) const;
   /// Ground normal force on each foot [N] (0 in the air).
   std::vector<double> normal_forces(const ode::Vec& y) const;
 
  private:
-  /// Adds the extra forces into f (3 per mass); returns false when there are none.
+  /// Writes the actuator forces into f (3 per mass); returns false when there are none.
   bool extra_forces(const ode::Vec& y, ode::Vec& f) const;
-  double normal_force(const ode::Vec& y, int foot) const;
+  /// Adds the actuator forces at y to the momentum rates of dydt.
+  void add_extra(const ode::Vec& y, ode::Vec& dydt) const;
   /// Stance attitude feedback: fills fb_ with each leg's extra actuator force
   /// (zero for legs off the ground); false when it is off or no leg is grounded.
   bool feedback(const ode::Vec& y) const;
+  /// The minimum-norm solution of A f = b (A: 3 x legs) into f_.
+  const Eigen::VectorXd& min_norm_solve(const Eigen::MatrixXd& A, const Eigen::Vector3d& b) const;
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
@@ -86,6 +101,10 @@ class RobotSystem final : public ode::OdeSystem {
   std::vector<double> inv_mass_;
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
+  mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)
+  mutable std::vector<Eigen::Vector3d> u_;
+  mutable Eigen::MatrixXd A_;
+  mutable Eigen::VectorXd f_;
   mutable ode::Vec yp_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
 };

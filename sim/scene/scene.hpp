@@ -155,6 +155,10 @@ struct PseudoRigid {
   bool body_error_norm = false;
   /// The stiff solver of the full model (defaults: rodas4, rtol 1e-6, atol 1e-8).
   ode::SolverOptions solver = default_solver();
+  /// Method verlet ("solver": {"energy_tol"}): bound on Verlet's bounded energy term,
+  /// relative to the run's energy scale (solver.verlet_energy_budget = energy_tol x scale,
+  /// sub-stepping the impacts); 0 = off. [-]
+  double energy_tol = 0.0;
   static ode::SolverOptions default_solver() {
     ode::SolverOptions s;
     s.method = ode::Method::kRodas4;
