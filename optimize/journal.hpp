@@ -1,7 +1,7 @@
 // The study journal: an append-only JSON-lines file, one record per
 // evaluation, flushed and fsynced per record; a torn last line is skipped on
-// reading. Every line carries a checksum of its content, checked on reading. It holds no timings (they go to timings.csv), so a study gives the
-// same journal bytes whatever the thread count.
+// reading. Every line carries a checksum of its content, checked on reading. It holds no timings
+// (they go to timings.csv), so a study gives the same journal bytes whatever the thread count.
 #pragma once
 
 #include <cstdio>

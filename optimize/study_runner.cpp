@@ -173,9 +173,8 @@ void check_last_record(const JournalContents& journal, const Evaluator& ev,
                        const std::string& path) {
   if (journal.records.empty()) return;
   const JournalRecord& last = journal.records.back();
-  const json again =
-      journal_record(last.index, last.purpose.c_str(), ev.evaluate_full(last.x),
-                     ev.variable_names());
+  const json again = journal_record(last.index, last.purpose.c_str(), ev.evaluate_full(last.x),
+                                    ev.variable_names());
   json recorded = last.line;
   recorded.erase("checksum");
   const std::string key = first_difference(recorded, again);

@@ -167,8 +167,7 @@ double JsonReader::positive_or(const std::string& key, double fallback) {
   const json& v = get(key);
   if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0.0 ||
       v.get<double>() > kMaxInputMagnitude) {
-    throw error(key, "a finite number > 0 and <= " + number_text(kMaxInputMagnitude),
-                describe(v));
+    throw error(key, "a finite number > 0 and <= " + number_text(kMaxInputMagnitude), describe(v));
   }
   return v.get<double>();
 }
