@@ -41,7 +41,7 @@ Run optimize(const TempDir& d, const std::string& out, bool resume) {
       "optimize", kStudy, "--threads", "1", "-q", "--set", "/optimizer/max_evaluations=12",
       "--out",    out};
   if (resume) args.push_back("--resume");
-  return pronk(d, args);
+  return cli_support::pronk(d, args);
 }
 
 /// Writes `lines` as the journal of a fresh output directory `dir`.
@@ -77,7 +77,7 @@ TEST_CASE("study journals: edits, forgeries and old journals are refused on --re
     std::vector<std::string> t = lines;
     json rec = json::parse(t.back());
     rec["cost"] = std::nextafter(rec["cost"].get<double>(), 1e300);
-    t.back() = pronk::optimize::sealed(rec).dump();
+    t.back() = ::pronk::optimize::sealed(rec).dump();
     plant(d, "f", joined(t));
     const Run r = optimize(d, "f", true);
     CHECK(r.code == 2);
@@ -110,8 +110,8 @@ TEST_CASE("study journals: edits, forgeries and old journals are refused on --re
 TEST_CASE("map journals: an edited cell or a forged last cell is refused on --resume",
           "[cli][map][journal]") {
   TempDir d("journal");
-  write_file(d / "map.json", pronk::test::tiny_map_document(3, 2, 4.0).dump());
-  REQUIRE(pronk(d, {"map", "map.json", "--out", "m", "-q"}).code == 0);
+  write_file(d / "map.json", ::pronk::test::tiny_map_document(3, 2, 4.0).dump());
+  REQUIRE(cli_support::pronk(d, {"map", "map.json", "--out", "m", "-q"}).code == 0);
   const std::vector<std::string> lines = lines_of(slurp(d / "m/journal.jsonl"));
   REQUIRE(lines.size() >= 4);
   std::vector<std::string> t = lines;
@@ -119,7 +119,7 @@ TEST_CASE("map journals: an edited cell or a forged last cell is refused on --re
   rec["seconds_edited"] = 1;
   t[2] = rec.dump();
   plant(d, "e", joined(t));
-  Run r = pronk(d, {"map", "map.json", "--out", "e", "--resume", "-q"});
+  Run r = cli_support::pronk(d, {"map", "map.json", "--out", "e", "--resume", "-q"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, StartsWith("pronk: error: e/journal.jsonl: line 3 /checksum: expected"));
 
@@ -132,9 +132,9 @@ TEST_CASE("map journals: an edited cell or a forged last cell is refused on --re
   rec = json::parse(t[last_cell]);
   rec.erase("checksum");
   rec["trials"][0][0][3] = rec["trials"][0][0][3].get<long>() + 1;  // one more stride
-  t[last_cell] = pronk::optimize::sealed(rec).dump();
+  t[last_cell] = ::pronk::optimize::sealed(rec).dump();
   plant(d, "f", joined(t));
-  r = pronk(d, {"map", "map.json", "--out", "f", "--resume", "-q"});
+  r = cli_support::pronk(d, {"map", "map.json", "--out", "f", "--resume", "-q"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err,
              StartsWith("pronk: error: f/journal.jsonl: line " + std::to_string(last_cell + 1) +

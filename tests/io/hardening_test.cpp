@@ -56,8 +56,10 @@ TEST_CASE("numbers without a bound are bounded by kMaxInputMagnitude", "[io][har
   const json doc = {{"a", 2e12}, {"b", -1e13}, {"c", 1e12}};
   pronk::io::JsonReader r(doc, "f.json", "");
   CHECK(r.number("c") == 1e12);
+  CHECK(error_of([&] { (void)r.number("b"); }).expected() == "a finite number in [-1e+12, 1e+12]");
+  CHECK(r.number_or("b", 0.0, -1e15) == -1e13);  // an explicit bound stands
   CHECK(error_of([&] { (void)r.number("a"); }).pointer() == "/a");
-  CHECK(error_of([&] { (void)r.number_or("b", 0.0, -1e15); }).expected() ==
+  CHECK(error_of([&] { (void)r.number_or("a", 0.0, -1e15); }).expected() ==
         "a finite number in [-1e+15, 1e+12]");
   CHECK(error_of([&] { (void)r.positive_or("a", 1.0); }).pointer() == "/a");
 }
