@@ -280,8 +280,9 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     JsonReader p = r.object("pulse");
     const std::string mode = p.choice_or("mode", "max_force", {"max_force", "duration"});
     s.pulse.mode = mode == "duration" ? scene::PulseMode::kDuration : scene::PulseMode::kMaxForce;
-    s.pulse.max_force = p.positive_or("max_force", s.pulse.max_force);
-    s.pulse.duration = p.positive_or("duration", s.pulse.duration);
+    // Bounded away from 0: the leg force is impulse / duration.
+    s.pulse.max_force = p.number_or("max_force", s.pulse.max_force, 1e-6, 1e9);
+    s.pulse.duration = p.number_or("duration", s.pulse.duration, 1e-6, 1e3);
     s.pulse.gravity_compensation = p.boolean_or("gravity_compensation", true);
     p.finish();
   } else {
