@@ -41,6 +41,16 @@ void write_file_atomic(const std::string& path, const std::string& content) {
 
 namespace {
 
+// `text` in double quotes, followed by `rest` (built with += only: GCC 12 warns falsely
+// on "literal" + std::string&&).
+std::string quoted(const std::string& text, const char* rest) {
+  std::string out = "\"";
+  out += text;
+  out += "\"";
+  out += rest;
+  return out;
+}
+
 // Why `path` cannot be an output directory ("" when it can): the nearest existing part of
 // it must be a writable directory.
 std::string output_directory_problem(const std::string& path) {
@@ -50,11 +60,11 @@ std::string output_directory_problem(const std::string& path) {
   while (!p.empty() && !std::filesystem::exists(p, ec)) p = p.parent_path();
   if (p.empty()) p = ".";
   if (!std::filesystem::is_directory(p, ec)) {
-    return p.string() == path ? "\"" + path + "\", which exists and is not a directory"
-                              : "\"" + p.string() + "\", a part of the path that is a file";
+    return p.string() == path ? quoted(path, ", which exists and is not a directory")
+                              : quoted(p.string(), ", a part of the path that is a file");
   }
   if (::access(p.c_str(), W_OK | X_OK) != 0) {
-    return "\"" + p.string() + "\", a directory that is not writable";
+    return quoted(p.string(), ", a directory that is not writable");
   }
   return "";
 }
