@@ -341,11 +341,6 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     sim.duration = m.number_or("duration", sim.duration, 1e-9, 1e7);
     sim.max_strides = m.integer_or("max_strides", sim.max_strides, 1, 1000000000L);
     sim.sample_interval = m.positive_or("sample_interval", sim.sample_interval);
-    if (sim.duration / sim.sample_interval > 1e7) {
-      throw m.error("sample_interval", "at most 1e7 samples (duration / sample_interval)",
-                    number_text(sim.sample_interval) + " s for a duration of " +
-                        number_text(sim.duration) + " s");
-    }
     if (m.has("solver")) {
       JsonReader o = m.object("solver");
       auto& so = sim.solver;
