@@ -401,6 +401,9 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                  {"optimizer", st.optimizer.library + ":" + st.optimizer.algorithm},
                  {"seed", st.optimizer.seed}};
   JournalContents previous = read_journal(journal_path);
+  if (previous.header.is_null() && previous.torn_tail) {
+    std::filesystem::remove(journal_path);  // only a torn header: no evaluation was recorded
+  }
   if (!previous.header.is_null()) {
     if (!opt.resume) {
       throw io::InputError(journal_path, "", "no journal (or --resume to continue it)",

@@ -97,6 +97,11 @@ TEST_CASE("study journals: edits, forgeries and old journals are refused on --re
     CHECK_THAT(r.err, StartsWith("pronk: error: o/journal.jsonl: line 1 /checksum: expected a "
                                  "record with its checksum"));
   }
+  SECTION("a journal of half a header (killed at once) resumes from scratch") {
+    plant(d, "h", lines[0].substr(0, lines[0].size() / 2));
+    CHECK(optimize(d, "h", true).code == 0);
+    CHECK(slurp(d / "h/journal.jsonl") == reference);
+  }
   SECTION("a torn last line is still dropped and the study resumes to the same bytes") {
     std::vector<std::string> t(lines.begin(), lines.begin() + 5);
     const std::string half = lines[5].substr(0, lines[5].size() / 2);
