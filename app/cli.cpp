@@ -9,6 +9,7 @@
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
+#include "sim/io/atomic_file.hpp"
 #include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 
@@ -44,6 +45,14 @@ int run_cli(int argc, const char* const* argv) {
     return 2;
   }
   try {
+    // Every command's --out is checked before any work: a path that cannot be a
+    // directory is bad input, not a failure after the run.
+    for (const CLI::App* cmd : app.get_subcommands()) {
+      const CLI::Option* out = cmd->get_option_no_throw("--out");
+      if (out != nullptr && out->count() > 0) {
+        io::check_output_directory(out->as<std::string>(), "--out");
+      }
+    }
     if (simulate->parsed()) return run_simulate(simulate_args);
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);

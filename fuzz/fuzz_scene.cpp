@@ -1,13 +1,7 @@
 // libFuzzer target over the scene loader and --set parsing. Input layout: the
 // first line is a --set assignment, the rest a scene document. Any outcome but
 // a crash, a sanitizer report or an exception other than InputError is fine.
-#include <cstddef>
-#include <cstdint>
-#include <string>
-
-#include <nlohmann/json.hpp>
-
-#include "sim/io/input_error.hpp"
+#include "fuzz/fuzz_support.hpp"
 #include "sim/io/scene_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -15,12 +9,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t nl = input.find('\n');
   const std::string assignment = nl == std::string::npos ? std::string() : input.substr(0, nl);
   const std::string body = nl == std::string::npos ? input : input.substr(nl + 1);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(body);
-  } catch (const nlohmann::json::exception&) {
-    return 0;
-  }
+  const auto parsed = pronk::fuzz::document(body);
+  if (!parsed) return 0;
+  nlohmann::json doc = *parsed;
   try {
     if (!assignment.empty()) pronk::io::apply_override(doc, assignment);
     const pronk::scene::Scene s = pronk::io::parse_scene(doc, "fuzz.json");

@@ -5,8 +5,10 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "optimize/study.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/json_reader.hpp"
 
@@ -14,57 +16,112 @@ namespace pronk::optimize {
 
 using nlohmann::json;
 
-JournalContents read_journal(const std::string& path) {
-  JournalContents c;
-  std::ifstream in(path);
-  if (!in) return c;
-  std::string line;
-  long lineno = 0;
+std::string record_checksum(const json& record) {
+  if (!record.is_object() || !record.contains("checksum")) return fnv1a_hex(record.dump());
+  json content = record;
+  content.erase("checksum");
+  return fnv1a_hex(content.dump());
+}
+
+json sealed(json record) {
+  record.erase("checksum");
+  record["checksum"] = record_checksum(record);
+  return record;
+}
+
+void check_seal(const json& record, const std::string& path, long line_number) {
+  const std::string where = "line " + std::to_string(line_number) + " /checksum";
+  if (!record.is_object()) {
+    throw io::InputError(path, "line " + std::to_string(line_number), "a JSON object record",
+                         io::describe(record));
+  }
+  const auto it = record.find("checksum");
+  if (it == record.end()) {
+    throw io::InputError(path, where,
+                         "a record with its checksum (journals of this pronk carry one; delete "
+                         "the journal to start over)",
+                         "no checksum");
+  }
+  const std::string expected = record_checksum(record);
+  if (!it->is_string() || it->get<std::string>() != expected) {
+    throw io::InputError(path, where,
+                         "checksum " + expected +
+                             " of the record's content (the journal was edited or corrupted; "
+                             "delete it to start over)",
+                         io::describe(*it));
+  }
+}
+
+namespace {
+
+// One evaluation record from its parsed line (nlohmann exceptions for missing fields).
+JournalRecord evaluation_record(const json& j, long line_number) {
+  JournalRecord r;
+  r.index = j.at("index").get<long>();
+  r.purpose = j.at("purpose").get<std::string>();
+  r.x = j.at("x").get<std::vector<double>>();
+  r.result.ok = j.at("ok").get<bool>();
+  r.result.cost = j.at("cost").get<double>();
+  r.result.constraints = j.at("constraints").get<std::vector<double>>();
+  r.result.failure = j.value("failure", "");
+  r.line = j;
+  r.line_number = line_number;
+  return r;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
-  while (std::getline(in, line)) lines.push_back(line);
-  // A line without its newline at the very end is a torn write.
-  in.clear();
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t nl = text.find('\n', begin);
+    const std::size_t end = nl == std::string::npos ? text.size() : nl;
+    lines.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return lines;
+}
+
+}  // namespace
+
+JournalContents parse_journal(const std::string& text, const std::string& path) {
+  JournalContents c;
+  const std::vector<std::string> lines = split_lines(text);
   for (size_t i = 0; i < lines.size(); ++i) {
-    ++lineno;
+    const long lineno = static_cast<long>(i) + 1;
+    const std::string where = "line " + std::to_string(lineno);
+    if (i + 1 == lines.size() && text.back() != '\n') {
+      c.torn_tail = true;  // a last line without its newline is a torn write
+      break;
+    }
     json j;
     try {
-      j = json::parse(lines[i]);
-    } catch (const json::exception&) {
-      if (i + 1 == lines.size()) {
-        c.torn_tail = true;
-        break;
-      }
-      throw io::InputError(path, "line " + std::to_string(lineno), "a JSON record",
-                           "an unreadable line in the middle of the journal");
+      j = io::parse_json_text(lines[i], path);
+    } catch (const io::InputError& e) {
+      throw io::InputError(path, where, "a JSON record", e.found());
     }
+    check_seal(j, path, lineno);
     if (i == 0) {
-      if (!j.is_object() || j.value("type", "") != "header") {
-        throw io::InputError(path, "line 1", "a journal header record", io::describe(j));
+      if (j.value("type", "") != "header") {
+        throw io::InputError(path, where, "a journal header record", io::describe(j));
       }
       c.header = j;
       continue;
     }
-    JournalRecord r;
     try {
-      r.index = j.at("index").get<long>();
-      r.purpose = j.at("purpose").get<std::string>();
-      r.x = j.at("x").get<std::vector<double>>();
-      r.result.ok = j.at("ok").get<bool>();
-      r.result.cost = j.at("cost").get<double>();
-      r.result.constraints = j.at("constraints").get<std::vector<double>>();
-      r.result.failure = j.value("failure", "");
+      c.records.push_back(evaluation_record(j, lineno));
     } catch (const json::exception& e) {
-      if (i + 1 == lines.size()) {
-        c.torn_tail = true;
-        break;
-      }
-      throw io::InputError(path, "line " + std::to_string(lineno), "an evaluation record",
-                           e.what());
+      throw io::InputError(path, where, "an evaluation record", e.what());
     }
-    r.line = j;
-    c.records.push_back(std::move(r));
   }
   return c;
+}
+
+JournalContents read_journal(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return parse_journal(buf.str(), path);
 }
 
 JournalWriter::JournalWriter(const std::string& path, const json& header) : path_(path) {
@@ -83,7 +140,7 @@ JournalWriter::~JournalWriter() {
 }
 
 void JournalWriter::append(const json& record) {
-  const std::string text = record.dump() + "\n";
+  const std::string text = sealed(record).dump() + "\n";
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0 ||
       ::fsync(fileno(file_)) != 0) {
     throw std::runtime_error("cannot write journal " + path_ + ": " + std::strerror(errno));

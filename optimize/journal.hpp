@@ -1,7 +1,7 @@
 // The study journal: an append-only JSON-lines file, one record per
 // evaluation, flushed and fsynced per record; a torn last line is skipped on
-// reading. It holds no timings (they go to timings.csv), so a study gives the
-// same journal bytes whatever the thread count.
+// reading. Every line carries a checksum of its content, checked on reading. It holds no timings
+// (they go to timings.csv), so a study gives the same journal bytes whatever the thread count.
 #pragma once
 
 #include <cstdio>
@@ -20,6 +20,7 @@ struct JournalRecord {
   std::vector<double> x;  ///< optimizer coordinates
   ProblemEvaluation result;
   nlohmann::json line;  ///< the whole record as read
+  long line_number = 0;  ///< 1-based line of the journal file
 };
 
 struct JournalContents {
@@ -28,8 +29,21 @@ struct JournalContents {
   bool torn_tail = false;  ///< the last line was incomplete and skipped
 };
 
-/// Reads a journal; InputError if the file exists but its header is unreadable.
+/// Reads a journal; an empty result when the file does not exist. InputError (naming the
+/// line) for an unreadable header, a line in the middle that is not a record, or a line
+/// whose checksum does not match its content (edited, corrupted, or written by a pronk
+/// without checksums).
 JournalContents read_journal(const std::string& path);
+/// The same from the journal's text; `path` names it in errors.
+JournalContents parse_journal(const std::string& text, const std::string& path);
+
+/// FNV-1a 64 (16 hex digits) of a record's canonical text (dump() without its "checksum").
+std::string record_checksum(const nlohmann::json& record);
+/// The record with its "checksum" added: what every journal line holds.
+nlohmann::json sealed(nlohmann::json record);
+/// Throws io::InputError at `path` line `line_number` unless `record` (a JSON object) carries
+/// the checksum of its content.
+void check_seal(const nlohmann::json& record, const std::string& path, long line_number);
 
 class JournalWriter {
  public:
@@ -38,7 +52,7 @@ class JournalWriter {
   ~JournalWriter();
   JournalWriter(const JournalWriter&) = delete;
   JournalWriter& operator=(const JournalWriter&) = delete;
-  /// Appends one line and fsyncs it.
+  /// Appends one line (the record sealed with its checksum) and fsyncs it.
   void append(const nlohmann::json& record);
 
  private:

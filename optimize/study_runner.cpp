@@ -157,6 +157,40 @@ class JournalObserver final : public EvaluationObserver {
   double last_print_ = 0.0;
 };
 
+// The first key at which two records differ ("" when equal).
+std::string first_difference(const json& a, const json& b) {
+  for (auto it = a.begin(); it != a.end(); ++it) {
+    if (!b.contains(it.key()) || b.at(it.key()).dump() != it.value().dump()) return it.key();
+  }
+  for (auto it = b.begin(); it != b.end(); ++it) {
+    if (!a.contains(it.key())) return it.key();
+  }
+  return "";
+}
+
+// Evaluations are deterministic: the journal's last record, evaluated again, must give the
+// same bytes, or the journal was not written by this study on this build.
+void check_last_record(const JournalContents& journal, const Evaluator& ev,
+                       const std::string& path) {
+  if (journal.records.empty()) return;
+  const JournalRecord& last = journal.records.back();
+  const json again = journal_record(last.index, last.purpose.c_str(), ev.evaluate_full(last.x),
+                                    ev.variable_names());
+  json recorded = last.line;
+  recorded.erase("checksum");
+  const std::string key = first_difference(recorded, again);
+  if (key.empty()) return;
+  auto text = [&](const json& j) {
+    const std::string d = j.contains(key) ? j.at(key).dump() : "nothing";
+    return d.size() > 80 ? d.substr(0, 77) + "..." : d;
+  };
+  throw io::InputError(path, "line " + std::to_string(last.line_number) + " /" + key,
+                       "the value its re-evaluation gives, " + text(again) +
+                           " (evaluations are deterministic; a journal edited or written by "
+                           "another build cannot be resumed)",
+                       text(recorded));
+}
+
 std::string csv_num(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", x);
@@ -373,6 +407,9 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                  {"optimizer", st.optimizer.library + ":" + st.optimizer.algorithm},
                  {"seed", st.optimizer.seed}};
   JournalContents previous = read_journal(journal_path);
+  if (previous.header.is_null() && previous.torn_tail) {
+    std::filesystem::remove(journal_path);  // only a torn header: no evaluation was recorded
+  }
   if (!previous.header.is_null()) {
     if (!opt.resume) {
       throw io::InputError(journal_path, "", "no journal (or --resume to continue it)",
@@ -383,6 +420,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                            "the journal of this study (hash " + st.hash + ")",
                            "hash " + previous.header.value("study_hash", std::string("?")));
     }
+    check_last_record(previous, evaluator, journal_path);
     if (previous.torn_tail) {
       // Rewrite without the torn line so appends start on a fresh line.
       std::string text = previous.header.dump() + "\n";

@@ -1,12 +1,31 @@
 #!/usr/bin/env bash
-# Builds the fuzzer's seed corpus from the shipped scenes: each scene once
-# without and once with a --set line.
+# Builds a fuzzer's seed corpus from the shipped inputs:
+#   make_fuzz_corpus.sh DIR [scene|mechanism|study|map_study|journal]   (default scene)
+# scene: each scene once without and once with a --set line; mechanism, study,
+# map_study: the shipped documents of that kind; journal: a small study journal.
 set -euo pipefail
 out=${1:?corpus dir}
+kind=${2:-scene}
+studies="$(dirname "$0")/../studies"
 mkdir -p "$out"
 i=0
-for f in "$(dirname "$0")"/../studies/scenes/*.json; do
-  { echo ""; cat "$f"; } > "$out/scene_$i"
-  { echo "/controller/hop_height=0.3"; cat "$f"; } > "$out/set_$i"
-  i=$((i + 1))
-done
+case "$kind" in
+  scene)
+    for f in "$studies"/scenes/*.json; do
+      { echo ""; cat "$f"; } > "$out/scene_$i"
+      { echo "/controller/hop_height=0.3"; cat "$f"; } > "$out/set_$i"
+      i=$((i + 1))
+    done ;;
+  mechanism) cp "$studies"/mechanisms/*.json "$out/" ;;
+  study) cp "$studies"/study*.json "$out/" ;;
+  map_study) cp "$studies"/map_*.json "$out/" ;;
+  journal)
+    # The fuzz target seals each line with its checksum itself.
+    cat > "$out/journal_0" <<'JOURNAL'
+{"constraints":[],"optimizer":"nlopt:LN_BOBYQA","parameters":["kp_x","kd_x"],"seed":2,"study":"s","study_hash":"0123456789abcdef","type":"header"}
+{"constraints":[0.5],"cost":0.25,"index":0,"metrics":{"y_error":0.1},"ok":true,"purpose":"objective","simulations":4,"spectral_radius":0.5,"strides":40,"type":"evaluation","values":{"kd_x":2.25,"kp_x":1.5},"x":[0.5,0.5]}
+{"constraints":[1.0],"cost":1000.0,"failure":"scene: invalid","index":1,"ok":false,"purpose":"gradient","simulations":0,"spectral_radius":10,"strides":0,"type":"evaluation","values":{},"x":[0.25,1.0]}
+JOURNAL
+    ;;
+  *) echo "unknown corpus kind $kind" >&2; exit 2 ;;
+esac

@@ -2,7 +2,8 @@
 # Quick start, command 2: install what is missing, build, run every test.
 #   scripts/test.sh            Release build + CTest (the whole suite)
 #   PRONK_SANITIZE=1 ...       also the address/undefined sanitizer build + CTest
-#   PRONK_FUZZ_SECONDS=60 ...  also build the libFuzzer target and fuzz the scene loader
+#   PRONK_FUZZ_SECONDS=60 ...  also build the libFuzzer targets and fuzz every loader and the
+#                              journal reader (the seconds split evenly among them)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 fuzz=${PRONK_FUZZ_SECONDS:-0}
@@ -19,13 +20,21 @@ if [[ "${PRONK_SANITIZE:-0}" == 1 ]]; then
   (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j "$(nproc)")
 fi
 if [[ "$fuzz" != 0 ]]; then
+  # One libFuzzer target per loader (scene, mechanism, study, map study) and the journal
+  # reader; each fuzzes for its share of PRONK_FUZZ_SECONDS.
+  targets=(scene mechanism study map_study journal)
+  share=$(( fuzz / ${#targets[@]} > 0 ? fuzz / ${#targets[@]} : 1 ))
   cmake -S "$root" -B "$root/build-fuzz" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER=clang++-14 -DPRONK_BUILD_FUZZ=ON -DPRONK_BUILD_TESTS=OFF >/dev/null
-  cmake --build "$root/build-fuzz" --target fuzz_scene -j "$(nproc)"
-  corpus=$(mktemp -d)
-  "$root/scripts/make_fuzz_corpus.sh" "$corpus"
+  cmake --build "$root/build-fuzz" -j "$(nproc)" $(printf -- '--target fuzz_%s ' "${targets[@]}")
   mkdir -p "$root/build-fuzz/artifacts"
-  "$root/build-fuzz/fuzz_scene" -max_total_time="$fuzz" -max_len=8192 -print_final_stats=1 \
-    -artifact_prefix="$root/build-fuzz/artifacts/" "$corpus" 2>&1 | tail -n 15
-  echo "fuzz: no crash in ${fuzz} s"
+  for t in "${targets[@]}"; do
+    corpus=$(mktemp -d)
+    "$root/scripts/make_fuzz_corpus.sh" "$corpus" "$t"
+    echo "fuzz_$t: ${share} s"
+    "$root/build-fuzz/fuzz_$t" -max_total_time="$share" -max_len=8192 -print_final_stats=1 \
+      -artifact_prefix="$root/build-fuzz/artifacts/fuzz_${t}_" "$corpus" 2>&1 | tail -n 15
+    rm -rf "$corpus"
+  done
+  echo "fuzz: no crash in ${fuzz} s (${#targets[@]} targets, ${share} s each)"
 fi

@@ -14,6 +14,7 @@
 #include <map>
 #include <mutex>
 
+#include "optimize/journal.hpp"
 #include "optimize/map/map_output.hpp"
 #include "optimize/thread_pool.hpp"
 #include "sim/io/atomic_file.hpp"
@@ -35,6 +36,8 @@ double now_s() {
 struct JournalState {
   std::map<long, CellResult> cells;
   std::map<long, BoundaryResult> boundaries;
+  nlohmann::json last_cell;  ///< the last cell record read (null when none)
+  long last_cell_line = 0;
 };
 
 // Reads the journal of a map; a torn last line is dropped (and cut from the
@@ -53,12 +56,13 @@ JournalState read_map_journal(const std::string& path, const MapStudy& st) {
     json j;
     try {
       if (!complete) throw std::runtime_error("no end of line");
-      j = json::parse(line);
+      j = io::parse_json_text(line, path);
     } catch (const std::exception& e) {
       if (in.peek() == std::ifstream::traits_type::eof()) break;  // torn tail
       throw io::InputError(path, "line " + std::to_string(lineno), "a journal record", e.what());
     }
     good_bytes = offset;
+    check_seal(j, path, lineno);
     if (lineno == 1) {
       if (j.value("type", "") != "pronk_map_journal" || j.value("hash", "") != st.hash) {
         throw io::InputError(path, "/hash", "the journal of this map study (hash " + st.hash + ")",
@@ -73,6 +77,8 @@ JournalState read_map_journal(const std::string& path, const MapStudy& st) {
         if (c.index < 0 || c.index >= st.cells() || c.trials.size() != st.models.size())
           throw std::runtime_error("cell record does not fit the study");
         js.cells[c.index] = std::move(c);
+        js.last_cell = j;
+        js.last_cell_line = lineno;
       } else if (task == "boundary") {
         BoundaryResult b = boundary_from_json(j);
         js.boundaries[b.row] = b;
@@ -85,6 +91,21 @@ JournalState read_map_journal(const std::string& path, const MapStudy& st) {
   in.close();
   if (good_bytes < std::filesystem::file_size(path)) std::filesystem::resize_file(path, good_bytes);
   return js;
+}
+
+// Cells are deterministic: the journal's last cell, computed again, must give the same
+// bytes, or the journal was not written by this study on this build.
+void check_last_cell(const JournalState& js, const MapStudy& st, const std::string& path) {
+  if (js.last_cell.is_null()) return;
+  json recorded = js.last_cell;
+  recorded.erase("checksum");
+  const long index = recorded.at("cell").get<long>();
+  const json again = compute_task(st, MapTask{0, index, 0.0, 0.0});
+  if (again.dump() == recorded.dump()) return;
+  throw io::InputError(path, "line " + std::to_string(js.last_cell_line),
+                       "the record its re-computation gives (cells are deterministic; a journal "
+                       "edited or written by another build cannot be resumed)",
+                       "a different record for cell " + std::to_string(index));
 }
 
 // The map journal: one JSON line per finished task, flushed to the OS at once
@@ -116,7 +137,7 @@ class MapJournal {
   MapJournal(const MapJournal&) = delete;
   MapJournal& operator=(const MapJournal&) = delete;
   void append(const json& record) {
-    const std::string text = record.dump() + "\n";
+    const std::string text = sealed(record).dump() + "\n";
     if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
       throw std::runtime_error("cannot write journal " + path_ + ": " + std::strerror(errno));
     if (now_s() - last_sync_ > 0.5) sync();
@@ -196,6 +217,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   JournalState js;
   if (options.resume) {
     js = read_map_journal(journal_path, st);
+    check_last_cell(js, st, journal_path);
   } else {
     std::error_code ec;
     std::filesystem::remove(journal_path, ec);

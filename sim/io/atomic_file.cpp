@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sim/io/input_error.hpp"
+
 namespace pronk::io {
 
 void write_file_atomic(const std::string& path, const std::string& content) {
@@ -37,10 +39,54 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   }
 }
 
+namespace {
+
+// `text` in double quotes, followed by `rest` (built with += only: GCC 12 warns falsely
+// on "literal" + std::string&&).
+std::string quoted(const std::string& text, const char* rest) {
+  std::string out = "\"";
+  out += text;
+  out += "\"";
+  out += rest;
+  return out;
+}
+
+// Why `path` cannot be an output directory ("" when it can): the nearest existing part of
+// it must be a writable directory.
+std::string output_directory_problem(const std::string& path) {
+  if (path.empty()) return "an empty path";
+  std::filesystem::path p(path);
+  std::error_code ec;
+  while (!p.empty() && !std::filesystem::exists(p, ec)) p = p.parent_path();
+  if (p.empty()) p = ".";
+  if (!std::filesystem::is_directory(p, ec)) {
+    return p.string() == path ? quoted(path, ", which exists and is not a directory")
+                              : quoted(p.string(), ", a part of the path that is a file");
+  }
+  if (::access(p.c_str(), W_OK | X_OK) != 0) {
+    return quoted(p.string(), ", a directory that is not writable");
+  }
+  return "";
+}
+
+}  // namespace
+
+void check_output_directory(const std::string& path, const std::string& origin) {
+  const std::string problem = output_directory_problem(path);
+  if (!problem.empty()) {
+    throw InputError(origin, "", "a directory that exists or can be created", problem);
+  }
+}
+
 void make_directories(const std::string& path) {
   std::error_code ec;
   std::filesystem::create_directories(path, ec);
-  if (ec) throw std::runtime_error("cannot create directory " + path + ": " + ec.message());
+  if (!ec) return;
+  const std::string problem = output_directory_problem(path);
+  if (!problem.empty()) {
+    throw InputError(path, "", "a directory that exists or can be created", problem);
+  }
+  throw std::runtime_error("cannot create directory " + path + ": " + ec.message());
 }
 
 }  // namespace pronk::io

@@ -10,7 +10,12 @@ namespace pronk::io {
 /// Writes `content` to `path` atomically. Throws std::runtime_error on I/O failure.
 void write_file_atomic(const std::string& path, const std::string& content);
 
-/// Creates a directory and its parents; throws std::runtime_error with the path on failure.
+/// Creates a directory and its parents. InputError when the path cannot be a directory
+/// (a part of it is a file, or it is not writable); std::runtime_error on other failures.
 void make_directories(const std::string& path);
+
+/// Throws InputError (file `origin`, e.g. "--out") unless `path` is a directory or one can be
+/// created there: its nearest existing ancestor is a writable directory. Creates nothing.
+void check_output_directory(const std::string& path, const std::string& origin);
 
 }  // namespace pronk::io

@@ -43,6 +43,45 @@ std::string pointer_escape(const std::string& key) {
   return out;
 }
 
+std::size_t json_nesting_depth(std::string_view text) {
+  std::size_t depth = 0, deepest = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;  // the escaped character cannot end the string
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+json parse_json_text(const std::string& text, const std::string& file) {
+  const std::size_t depth = json_nesting_depth(text);
+  if (depth > kMaxJsonDepth) {
+    throw InputError(file, "",
+                     "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
+                     "arrays/objects nested " + std::to_string(depth) + " levels deep");
+  }
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(file, "", "valid JSON", std::string("a syntax error: ") + e.what());
+  } catch (const json::exception& e) {
+    // A number beyond the double range (1e400) is out_of_range 406, not a parse_error.
+    throw InputError(file, "", "valid JSON with finite numbers", e.what());
+  }
+}
+
 namespace {
 std::string number_text(double x) {
   std::ostringstream s;
@@ -98,6 +137,8 @@ std::vector<JsonReader> JsonReader::object_array(const std::string& key) {
 static double checked_number(const JsonReader& r, const std::string& ptr_key, const json& v,
                              double lo, double hi, const std::string& pointer) {
   (void)ptr_key;
+  if (std::isinf(lo)) lo = -kMaxInputMagnitude;
+  if (std::isinf(hi)) hi = kMaxInputMagnitude;
   if (!v.is_number()) throw InputError(r.file(), pointer, range_text(lo, hi), describe(v));
   double x = v.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi) {
@@ -124,8 +165,9 @@ double JsonReader::positive_or(const std::string& key, double fallback) {
     return fallback;
   }
   const json& v = get(key);
-  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0.0) {
-    throw error(key, "a finite number > 0", describe(v));
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0.0 ||
+      v.get<double>() > kMaxInputMagnitude) {
+    throw error(key, "a finite number > 0 and <= " + number_text(kMaxInputMagnitude), describe(v));
   }
   return v.get<double>();
 }

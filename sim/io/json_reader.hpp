@@ -10,6 +10,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,6 +21,21 @@
 namespace pronk::io {
 
 using json = nlohmann::json;
+
+/// Largest magnitude of a number read without an explicit bound: every derived
+/// quantity (energies, forces, their products) stays far inside the double range.
+inline constexpr double kMaxInputMagnitude = 1e12;
+/// Physical bounds of the loaders: masses [kg], gravity components [m/s^2].
+inline constexpr double kMinMass = 1e-6, kMaxMass = 1e6, kMaxGravity = 1e3;
+/// Deepest nesting of arrays and objects a JSON input may have.
+inline constexpr std::size_t kMaxJsonDepth = 128;
+
+/// Nesting depth of JSON text ('[' and '{' outside strings), found without parsing.
+std::size_t json_nesting_depth(std::string_view text);
+/// Parses JSON text read from `file` (named in errors). InputError for nesting deeper
+/// than kMaxJsonDepth (checked before parsing: deep nesting would overflow the stack),
+/// a syntax error, or a number beyond the double range.
+json parse_json_text(const std::string& text, const std::string& file);
 
 /// Short description of a JSON value for error messages ("string \"abc\"").
 std::string describe(const json& value);
@@ -39,14 +55,15 @@ class JsonReader {
   /// Array of sub-objects.
   std::vector<JsonReader> object_array(const std::string& key);
 
-  /// A finite number in [lo, hi]; required.
+  /// A finite number in [lo, hi]; required. An infinite bound stands for
+  /// kMaxInputMagnitude (so does every unbounded number below).
   double number(const std::string& key, double lo = -std::numeric_limits<double>::infinity(),
                 double hi = std::numeric_limits<double>::infinity());
   /// A finite number in [lo, hi] or `fallback` when absent.
   double number_or(const std::string& key, double fallback,
                    double lo = -std::numeric_limits<double>::infinity(),
                    double hi = std::numeric_limits<double>::infinity());
-  /// Strictly positive finite number (or fallback when absent).
+  /// A number in (0, kMaxInputMagnitude] (or fallback when absent).
   double positive_or(const std::string& key, double fallback);
   long integer_or(const std::string& key, long fallback, long lo, long hi);
   bool boolean_or(const std::string& key, bool fallback);

@@ -41,7 +41,12 @@ class Loader {
     if (m.name.empty() || m.name.find('/') != std::string::npos) {
       throw r.error("name", "a non-empty name without '/'", describe(doc_["name"]));
     }
-    m.gravity = r.vec3_or("gravity", Eigen::Vector3d(0.0, 0.0, -9.81));
+    m.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+    if (r.has("gravity")) {
+      m.gravity = r.vector("gravity", 3, -kMaxGravity, kMaxGravity);
+    } else {
+      r.optional("gravity");
+    }
 
     // Simulation settings first: body and surface defaults come from there.
     Settings set;
@@ -59,7 +64,7 @@ class Loader {
     if (r.has("masses")) {
       for (JsonReader& e : r.object_array("masses")) {
         const std::string name = node_name(e);
-        const double mass = e.positive_or("mass", 1.0);
+        const double mass = e.number_or("mass", 1.0, kMinMass, kMaxMass);
         const Eigen::Vector3d x = e.vector("position", 3);
         const Eigen::Vector3d v = e.vec3_or("velocity", Eigen::Vector3d::Zero());
         define(e, name, pr::add_mass(m, name, mass, x, v));
@@ -314,7 +319,7 @@ class Loader {
     if (bodies_.count(spec.name) != 0) {
       throw e.error("name", "a body name not used before", "duplicate \"" + spec.name + "\"");
     }
-    spec.mass = e.positive_or("mass", 1.0);
+    spec.mass = e.number_or("mass", 1.0, kMinMass, kMaxMass);
     const json* inertia = raw(node, "inertia");
     if (inertia != nullptr && inertia->is_array() && !inertia->empty() &&
         (*inertia)[0].is_array()) {

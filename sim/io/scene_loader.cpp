@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -50,7 +51,7 @@ void check_principal_moments(const Eigen::Vector3d& I, const JsonReader& r,
 
 scene::Body parse_body(JsonReader r) {
   scene::Body b;
-  b.mass = r.positive_or("mass", b.mass);
+  b.mass = r.number_or("mass", b.mass, kMinMass, kMaxMass);
   if (r.has("inertia") && r.has("inertia_tensor")) {
     throw r.error("inertia_tensor", "either \"inertia\" or \"inertia_tensor\", not both",
                   "both keys");
@@ -77,18 +78,15 @@ scene::Body parse_body(JsonReader r) {
 }  // namespace
 
 json read_json_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path, "", "a JSON file", "a directory");
+  }
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "a readable JSON file", "no such file or unreadable");
   std::stringstream buf;
   buf << in.rdbuf();
-  try {
-    return json::parse(buf.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "", "valid JSON", std::string("a syntax error: ") + e.what());
-  } catch (const json::exception& e) {
-    // A number beyond the double range (1e400) is out_of_range 406, not a parse_error.
-    throw InputError(path, "", "valid JSON with finite numbers", e.what());
-  }
+  return parse_json_text(buf.str(), path);
 }
 
 void apply_override(json& doc, const std::string& assignment) {
@@ -100,6 +98,11 @@ void apply_override(json& doc, const std::string& assignment) {
   const std::string ptr = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
   json value;
+  if (json_nesting_depth(text) > kMaxJsonDepth) {
+    throw InputError("command line (" + where + ")", ptr,
+                     "a value nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
+                     std::to_string(json_nesting_depth(text)) + " levels");
+  }
   try {
     value = json::parse(text);
   } catch (const json::parse_error&) {
@@ -277,8 +280,9 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     JsonReader p = r.object("pulse");
     const std::string mode = p.choice_or("mode", "max_force", {"max_force", "duration"});
     s.pulse.mode = mode == "duration" ? scene::PulseMode::kDuration : scene::PulseMode::kMaxForce;
-    s.pulse.max_force = p.positive_or("max_force", s.pulse.max_force);
-    s.pulse.duration = p.positive_or("duration", s.pulse.duration);
+    // Bounded away from 0: the leg force is impulse / duration.
+    s.pulse.max_force = p.number_or("max_force", s.pulse.max_force, 1e-6, 1e9);
+    s.pulse.duration = p.number_or("duration", s.pulse.duration, 1e-6, 1e3);
     s.pulse.gravity_compensation = p.boolean_or("gravity_compensation", true);
     p.finish();
   } else {

@@ -12,7 +12,8 @@
 
 namespace pronk::io {
 
-/// Reads and parses a JSON file; InputError on a missing file or a syntax error.
+/// Reads and parses a JSON file; InputError on a missing file, a directory, nesting deeper
+/// than kMaxJsonDepth or a syntax error.
 nlohmann::json read_json_file(const std::string& path);
 
 /// Applies "--set /json/pointer=value" overrides to a document. The value is

@@ -75,7 +75,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
   const long attempts_at_start = c.steps_accepted + c.steps_rejected;
   while (stepper.t() < t_end) {
     const long attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
-    if (attempts >= options.max_steps) {
+    if (c.steps_accepted + c.steps_rejected >= options.max_steps) {  // the whole run's budget
       result.reason = StopReason::kMaxSteps;
       result.t = stepper.t();
       result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;

@@ -50,7 +50,9 @@ struct SolverOptions {
   double h_max = 0.1;          ///< largest step [s]
   double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
   double event_tol = 1e-13;    ///< event time tolerance [s]
-  long max_steps = 100000000;  ///< accepted + rejected steps per integrate() call before giving up
+  /// Step attempts (accepted + rejected) of the whole run before it ends with a reason: the
+  /// stepper's counters, which carry over reset() (restarts at events), not one integrate() call.
+  long max_steps = 100000000;
   /// Adaptive methods: the crawl guard. A run whose step attempts exceed
   /// kStepBudgetFloor + max_steps_per_second x (simulated time since it started) ends with a
   /// reason instead of grinding on at tiny steps (a near-stall at a contact switch took
@@ -72,6 +74,9 @@ struct SolverOptions {
   bool crawling(long attempts, double simulated) const;
   /// "N step attempts for T s simulated up to t = ... s (budget ...)": the reason of a crawl.
   std::string crawl_reason(long attempts, double simulated, double t) const;
+  /// "step budget exceeded: N step attempts ... max_steps ... at t = ...": the reason of a run
+  /// that used up max_steps.
+  std::string step_limit_reason(long attempts, double t) const;
 };
 
 /// Cost counters of a run; accumulated over restarts.
@@ -130,7 +135,8 @@ class Stepper {
 std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
 
 /// Why integrate() returned.
-/// kCrawling: SolverOptions::crawling() (the crawl guard).
+/// kMaxSteps: the stepper's counters (accepted + rejected, since it was made) reached
+/// SolverOptions::max_steps. kCrawling: SolverOptions::crawling() (the crawl guard).
 enum class StopReason { kReachedEnd, kEvent, kStepSizeCollapse, kNonFinite, kMaxSteps, kCrawling };
 
 struct IntegrateResult {

@@ -109,4 +109,13 @@ std::string SolverOptions::crawl_reason(long attempts, double simulated, double 
   return buf;
 }
 
+std::string SolverOptions::step_limit_reason(long attempts, double t) const {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "step budget exceeded: %ld step attempts (accepted + rejected, whole run) reached "
+                "max_steps = %ld at t = %.9g s; take larger steps or raise max_steps",
+                attempts, max_steps, t);
+  return buf;
+}
+
 }  // namespace pronk::ode

@@ -175,7 +175,6 @@ RunSummary simulate(const Mechanism& m) {
   const double gl_w[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
   ode::Vec yq(n);
   double next_out = opt.output_interval;
-  long steps = 0;
   bool diverged = false;
   char buf[400];
   auto diverge = [&](const std::string& why) {
@@ -193,7 +192,6 @@ RunSummary simulate(const Mechanism& m) {
     }
     while (stepper->t() < bp) {
       const ode::StepStatus st = stepper->step(view, bp);
-      ++steps;
       if (st != ode::StepStatus::kOk) {
         std::snprintf(buf, sizeof buf, "%s at t = %.9g s (step %.3g s)",
                       st == ode::StepStatus::kNonFinite ? "non-finite state" : "step-size collapse",
@@ -254,18 +252,14 @@ RunSummary simulate(const Mechanism& m) {
         diverge(buf);
         break;
       }
-      {
-        const ode::SolverCounters& c = stepper->counters();
-        const long attempts = c.steps_accepted + c.steps_rejected;
-        if (opt.solver.crawling(attempts, tb)) {
-          diverge(opt.solver.crawl_reason(attempts, tb, tb));
-          break;
-        }
+      const ode::SolverCounters& c = stepper->counters();
+      const long attempts = c.steps_accepted + c.steps_rejected;  // the whole run's
+      if (opt.solver.crawling(attempts, tb)) {
+        diverge(opt.solver.crawl_reason(attempts, tb, tb));
+        break;
       }
-      if (steps >= opt.solver.max_steps) {
-        std::snprintf(buf, sizeof buf, "step limit %ld reached at t = %.9g s", opt.solver.max_steps,
-                      tb);
-        diverge(buf);
+      if (attempts >= opt.solver.max_steps) {
+        diverge(opt.solver.step_limit_reason(attempts, tb));
         break;
       }
     }

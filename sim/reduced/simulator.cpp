@@ -249,7 +249,9 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
         running = false;
         continue;
       case ode::StopReason::kMaxSteps:
-        end_run(RunStatus::kDiverged, "step limit reached at t = " + fmt(t) + " s");
+        end_run(RunStatus::kDiverged,
+                sim.solver.step_limit_reason(
+                    stepper->counters().steps_accepted + stepper->counters().steps_rejected, t));
         running = false;
         continue;
       case ode::StopReason::kCrawling:

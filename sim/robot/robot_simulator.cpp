@@ -727,7 +727,9 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         running = false;
         continue;
       case ode::StopReason::kMaxSteps:
-        end_run(reduced::RunStatus::kDiverged, "step limit reached at t = " + fmt(t) + " s");
+        end_run(reduced::RunStatus::kDiverged,
+                prs.solver.step_limit_reason(
+                    stepper->counters().steps_accepted + stepper->counters().steps_rejected, t));
         running = false;
         continue;
       case ode::StopReason::kCrawling:

@@ -90,7 +90,7 @@ std::vector<BadCase> bad_cases() {
       {"unknown solver key", c1, [](json& d) { d["simulation"]["solver"]["rtoll"] = 1e-6; },
        "/simulation/solver/rtoll", "a known key"},
       {"string for a number", c1, [](json& d) { d["body"]["mass"] = "1.5"; }, "/body/mass",
-       "a finite number > 0"},
+       "a finite number in [1e-06, 1000000]"},
       {"number for a vector", c1, [](json& d) { d["initial"]["position"] = 0.3; },
        "/initial/position", "an array of 3 numbers"},
       {"vector of the wrong length", c1,
@@ -99,7 +99,7 @@ std::vector<BadCase> bad_cases() {
        },
        "/initial/position", "an array of 3 numbers"},
       {"negative mass", c1, [](json& d) { d["body"]["mass"] = -1; }, "/body/mass",
-       "a finite number > 0"},
+       "a finite number in [1e-06, 1000000]"},
       {"hop height 0", c1, [](json& d) { d["controller"]["hop_height"] = 0; },
        "/controller/hop_height", "a finite number > 0"},
       {"rtol -1", c1, [](json& d) { d["simulation"]["solver"]["rtol"] = -1; },
@@ -243,7 +243,7 @@ TEST_CASE("bad --set overrides exit 2 naming the pointer", "[cli][errors]") {
   const std::string scene = kSceneDir + "case1_body_only.json";
   SECTION("a value out of range") {
     const Run r = pronk(dir, {"simulate", scene, "--set", "/body/mass=-1", "--out", dir / "o"});
-    check_bad_input(r, scene, "/body/mass", "a finite number > 0");
+    check_bad_input(r, scene, "/body/mass", "a finite number in [1e-06, 1000000]");
     CHECK_THAT(r.err, Contains("found number -1"));
     CHECK_FALSE(fs::exists(dir / "o"));
   }

@@ -181,7 +181,7 @@ TEST_CASE("bad mechanism input names the exact JSON Pointer", "[io][mechanism]")
     FAIL("no error");
   } catch (const io::InputError& e) {
     CHECK(std::string(e.what()) ==
-          "x.json: /masses/0/mass: expected a finite number > 0, found "
+          "x.json: /masses/0/mass: expected a finite number in [1e-06, 1000000], found "
           "number -1");
   }
 }

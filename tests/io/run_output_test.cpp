@@ -170,7 +170,8 @@ TEST_CASE("write_file_atomic replaces content and leaves no temporary file", "[i
   CHECK(slurp(path) == big);
 }
 
-TEST_CASE("make_directories creates parents and reports failures", "[io][atomic]") {
+TEST_CASE("make_directories creates parents and reports a path that cannot be one",
+          "[io][atomic]") {
   ScratchDir dir;
   io::make_directories(dir.path + "/a/b/c");
   CHECK(fs::is_directory(dir.path + "/a/b/c"));
@@ -179,8 +180,9 @@ TEST_CASE("make_directories creates parents and reports failures", "[io][atomic]
   try {
     io::make_directories(dir.path + "/file/sub");
     FAIL("make_directories below a regular file did not throw");
-  } catch (const std::runtime_error& e) {
-    CHECK_THAT(e.what(), Contains("cannot create directory " + dir.path + "/file/sub"));
+  } catch (const io::InputError& e) {  // bad input: a part of the path is a file
+    CHECK(e.file() == dir.path + "/file/sub");
+    CHECK(e.found() == "\"" + dir.path + "/file\", a part of the path that is a file");
   }
 }
 

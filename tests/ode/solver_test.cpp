@@ -367,7 +367,8 @@ TEST_CASE("ode: finite-time blow-up stops with a failure, not NaN", "[ode]") {
   CHECK(r.t == s->t());
 }
 
-TEST_CASE("ode: max_steps limits one integrate() call", "[ode]") {
+TEST_CASE("ode: max_steps bounds the stepper's steps across integrate() calls and resets",
+          "[ode]") {
   const Method m = GENERATE(Method::kEuler, Method::kDopri5);
   SolverOptions o;
   o.method = m;
@@ -378,6 +379,12 @@ TEST_CASE("ode: max_steps limits one integrate() call", "[ode]") {
   s->reset(sys, 0.0, Vec::Unit(2, 0));
   const IntegrateResult r = integrate(sys, *s, 1.0, {}, o);
   CHECK(r.reason == StopReason::kMaxSteps);
+  CHECK(s->counters().steps_accepted + s->counters().steps_rejected == 10);
+  // A restart (as the hybrid simulators do at every event) does not renew the budget.
+  s->reset(sys, s->t(), s->y());
+  const IntegrateResult again = integrate(sys, *s, 1.0, {}, o);
+  CHECK(again.reason == StopReason::kMaxSteps);
+  CHECK(again.attempts == 0);
   CHECK(s->counters().steps_accepted + s->counters().steps_rejected == 10);
 }
 
