@@ -27,6 +27,7 @@
 #include "sim/io/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/robot/robot_simulator.hpp"
+#include "sim/simulate.hpp"
 
 using namespace pronk;
 
@@ -73,11 +74,9 @@ void ladder(scene::ModelKind model, bool* first) {
   s.model = model;
   s.simulation.duration = 10.0;
   reduced::RunResult run;
-  if (model == scene::ModelKind::kPseudoRigid) {
-    run = robot::simulate(s, {false}).run;
-  } else {
-    run = reduced::simulate(s, {false, true, false});
-  }
+  pronk::RunOptions o;
+  o.record_trajectory = false;
+  run = pronk::simulate(s, o).run;
   const auto& c = run.cost.solver;
   std::printf(
       "%s    {\"group\": \"ladder\", \"model\": \"%s\", \"status\": \"%s\", \"t_end\": %.4g, "
