@@ -179,6 +179,7 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
   if (doc.contains("model"))
     throw r.error("model", "a \"model\" in every stage, none at the top",
                   io::describe(doc["model"]));
+  st.cross_evaluate = r.boolean_or("cross_evaluate", false);
   st.scene = resolved_scene(r, doc, file, base_dir);
   st.parameters = study_parameters(r, doc, st.scene);
   st.original = doc;
