@@ -17,7 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-double now_s() {
+double staged_now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
@@ -358,7 +358,7 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
 }  // namespace
 
 StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt) {
-  const double t0 = now_s();
+  const double t0 = staged_now_s();
   StagedOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
   io::make_directories(o.out_dir + "/stages");
@@ -370,7 +370,7 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
         run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
     if (stopped) {
       o.ok = false;
-      o.wall_time = now_s() - t0;
+      o.wall_time = staged_now_s() - t0;
       return o;  // the finished stages' results stay on disk; --resume continues
     }
   }
@@ -383,7 +383,7 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
       for (size_t j = 0; j < st.stages.size(); ++j)
         o.cross[i].push_back(evaluate_in_stage(st, j, o.stages[i].values, opt.threads));
   }
-  o.wall_time = now_s() - t0;
+  o.wall_time = staged_now_s() - t0;
   io::write_file_atomic(o.out_dir + "/design.json",
                         io::dump_checked(staged_design(st, o, st.original)));
   io::write_file_atomic(o.out_dir + "/summary.md", staged_summary(st, o));

@@ -24,7 +24,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string scenes_dir() {
+std::string fid_scenes_dir() {
   std::string dir = PRONK_SOURCE_DIR;
   dir.append("/studies/scenes");
   return dir;
@@ -32,7 +32,7 @@ std::string scenes_dir() {
 
 // The spring-legged robot of the seed's drop and hop tests (case 5 with spring legs),
 // hopping in place for a short time: a full-model evaluation costs well under a second.
-json spring_hop_study(const std::string& pointer = "/pseudo_rigid/leg_stiffness") {
+json fid_spring_hop_study(const std::string& pointer = "/pseudo_rigid/leg_stiffness") {
   return json::parse(R"({
     "name": "fidelity_test",
     "scene": "case5_pr_hop_height.json",
@@ -48,14 +48,16 @@ json spring_hop_study(const std::string& pointer = "/pseudo_rigid/leg_stiffness"
   })");
 }
 
-Study parse(const json& doc) { return parse_study(doc, "fidelity_test.json", scenes_dir()); }
+Study fid_parse(const json& doc) {
+  return parse_study(doc, "fidelity_test.json", fid_scenes_dir());
+}
 
-std::string expect_error(const json& doc, const std::string& pointer) {
+std::string fid_expect_error(const json& doc, const std::string& pointer) {
   try {
     if (is_staged_study(doc)) {
-      parse_staged_study(doc, "fidelity_test.json", scenes_dir());
+      parse_staged_study(doc, "fidelity_test.json", fid_scenes_dir());
     } else {
-      parse(doc);
+      fid_parse(doc);
     }
   } catch (const io::InputError& e) {
     CHECK(e.pointer() == pointer);
@@ -65,13 +67,13 @@ std::string expect_error(const json& doc, const std::string& pointer) {
   return "";
 }
 
-std::string temp_dir() {
+std::string fid_temp_dir() {
   std::string t = (std::filesystem::temp_directory_path() / "pronk_fidelity_XXXXXX").string();
   REQUIRE(mkdtemp(t.data()) != nullptr);
   return t;
 }
 
-std::string slurp(const std::string& p) {
+std::string fid_slurp(const std::string& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -82,7 +84,7 @@ std::string slurp(const std::string& p) {
 
 TEST_CASE("a full-model study runs the full model: leg stiffness moves the cost",
           "[optimize][fidelity]") {
-  const Study st = parse(spring_hop_study());
+  const Study st = fid_parse(fid_spring_hop_study());
   const Evaluator ev(st.evaluator);
   const Evaluation soft = ev.evaluate_full({0.0}), stiff = ev.evaluate_full({1.0});
   REQUIRE(soft.ok);
@@ -118,11 +120,11 @@ TEST_CASE("a full-model study runs the full model: leg stiffness moves the cost"
 }
 
 TEST_CASE("a study-level model runs every scenario in that model", "[optimize][fidelity]") {
-  json doc = spring_hop_study("/pulse/duration");
+  json doc = fid_spring_hop_study("/pulse/duration");
   doc["parameters"][0] = {
       {"name", "T"}, {"pointer", "/pulse/duration"}, {"lower", 0.02}, {"upper", 0.1}};
   doc["model"] = "pulse";
-  const Study st = parse(doc);
+  const Study st = fid_parse(doc);
   const Evaluator ev(st.evaluator);
   const Evaluation e = ev.evaluate_full({0.5});
   REQUIRE(e.ok);
@@ -137,49 +139,49 @@ TEST_CASE("a study-level model runs every scenario in that model", "[optimize][f
 
 TEST_CASE("parameters bind to numbers the model uses, and nothing else", "[optimize][input]") {
   // Leg stiffness with force legs (no leg is modelled): the model ignores it.
-  json d = spring_hop_study();
+  json d = fid_spring_hop_study();
   d["scene_overrides"][0] = "/pseudo_rigid/legs=\"force\"";
-  std::string msg = expect_error(d, "/parameters/0/pointer");
+  std::string msg = fid_expect_error(d, "/parameters/0/pointer");
   CHECK(msg.find("ignores") != std::string::npos);
   CHECK(msg.find("\"p\"") != std::string::npos);
   // A reduced-model study tuning a full-model setting.
-  d = spring_hop_study();
+  d = fid_spring_hop_study();
   d["model"] = "pulse";
-  msg = expect_error(d, "/parameters/0/pointer");
+  msg = fid_expect_error(d, "/parameters/0/pointer");
   CHECK(msg.find("/pseudo_rigid") != std::string::npos);
   // A pointer that names no field of the scene format.
-  d = spring_hop_study("/pseudo_rigid/leg_stifness");
-  expect_error(d, "/parameters/0/pointer");
+  d = fid_spring_hop_study("/pseudo_rigid/leg_stifness");
+  fid_expect_error(d, "/parameters/0/pointer");
   // The scene's value (here its default, contact damping 0) outside the bounds: no silent clamp.
-  d = spring_hop_study("/pseudo_rigid/leg_damping");
+  d = fid_spring_hop_study("/pseudo_rigid/leg_damping");
   d["scene_overrides"].erase(3);
-  expect_error(d, "/parameters/0/initial");
+  fid_expect_error(d, "/parameters/0/initial");
   // ... and a default inside the bounds is the start.
   d["parameters"][0]["lower"] = 0.0;
   d["parameters"][0]["upper"] = 20.0;
   d["parameters"][0]["log"] = false;
-  const Study st = parse(d);
+  const Study st = fid_parse(d);
   CHECK(st.evaluator.parameters[0].initial == 0.0);
   // A full-model metric in a reduced-model study.
-  d = spring_hop_study("/pulse/duration");
+  d = fid_spring_hop_study("/pulse/duration");
   d["parameters"][0] = {
       {"name", "T"}, {"pointer", "/pulse/duration"}, {"lower", 0.02}, {"upper", 0.1}};
   d["model"] = "impulse";
   d["parameters"][0]["pointer"] = "/controller/hop_height";
   d["parameters"][0]["upper"] = 0.3;
   d["objective"][0]["metric"] = "max_strain";
-  expect_error(d, "/objective/0/metric");
+  fid_expect_error(d, "/objective/0/metric");
   // Stability on passive legs: the stride map cannot be fitted.
-  d = spring_hop_study();
+  d = fid_spring_hop_study();
   d["stability"] = true;
   d["scene_overrides"].push_back("/pseudo_rigid/actuators=false");
-  expect_error(d, "/stability");
+  fid_expect_error(d, "/stability");
 }
 
 namespace {
 
 // Impulse then pulse: two cheap stages over the legged robot.
-json staged_study() {
+json fid_staged_study() {
   return json::parse(R"({
     "name": "staged_test",
     "scene": "case3_legged_pulse.json",
@@ -202,30 +204,30 @@ json staged_study() {
 }  // namespace
 
 TEST_CASE("staged studies: bad stages are input errors", "[optimize][input][stages]") {
-  json d = staged_study();
+  json d = fid_staged_study();
   d["stages"][1].erase("model");
-  expect_error(d, "/stages/1/model");
-  d = staged_study();
+  fid_expect_error(d, "/stages/1/model");
+  d = fid_staged_study();
   d["stages"][1]["start"] = "nothing";
-  expect_error(d, "/stages/1/start");
-  d = staged_study();
+  fid_expect_error(d, "/stages/1/start");
+  d = fid_staged_study();
   d["stages"][0]["budget"] = 3;
-  expect_error(d, "/stages/0/budget");
-  d = staged_study();
+  fid_expect_error(d, "/stages/0/budget");
+  d = fid_staged_study();
   d["stages"][0]["parameters"] = {"kp_roll", "T"};  // the impulse model has no pulse
-  const std::string msg = expect_error(d, "/parameters/1/pointer");
+  const std::string msg = fid_expect_error(d, "/parameters/1/pointer");
   CHECK(msg.find("stage \"impulse\"") != std::string::npos);
-  d = staged_study();
+  d = fid_staged_study();
   d["stages"][1]["parameters"] = {"kp_roll"};  // T is tuned by no stage
-  expect_error(d, "/parameters/2");
+  fid_expect_error(d, "/parameters/2");
 }
 
 TEST_CASE("staged studies run in order, report the fidelity gap and resume byte for byte",
           "[optimize][stages]") {
-  json doc = staged_study();
+  json doc = fid_staged_study();
   doc["cross_evaluate"] = true;
-  const StagedStudy st = parse_staged_study(doc, "staged_test.json", scenes_dir());
-  const std::string dir = temp_dir();
+  const StagedStudy st = parse_staged_study(doc, "staged_test.json", fid_scenes_dir());
+  const std::string dir = fid_temp_dir();
   StudyRunOptions opt;
   opt.out_dir = dir;
   opt.threads = 2;
@@ -233,8 +235,8 @@ TEST_CASE("staged studies run in order, report the fidelity gap and resume byte 
   REQUIRE(o.ok);
   REQUIRE(o.stages.size() == 2);
   // The second stage started from the first stage's tuned values.
-  const json d2 = json::parse(slurp(dir + "/stages/2_pulse/design.json"));
-  const json d1 = json::parse(slurp(dir + "/stages/1_impulse/design.json"));
+  const json d2 = json::parse(fid_slurp(dir + "/stages/2_pulse/design.json"));
+  const json d1 = json::parse(fid_slurp(dir + "/stages/1_impulse/design.json"));
   const json start2 = d2.at("study_document").at("parameters");
   CHECK(start2[0].at("initial") == d1.at("parameters").at("kp_roll"));
   CHECK(start2[1].at("initial") == d1.at("parameters").at("bank_kp"));
@@ -243,7 +245,7 @@ TEST_CASE("staged studies run in order, report the fidelity gap and resume byte 
   const Study pulse_at_first = stage_study(st, 1, o.stages[0].values);
   const Evaluator ev(pulse_at_first.evaluator);
   CHECK(o.gap_first.cost == ev.evaluate_full(ev.initial_point()).cost);
-  const json design = json::parse(slurp(dir + "/design.json"));
+  const json design = json::parse(fid_slurp(dir + "/design.json"));
   CHECK(design.at("stages").size() == 2);
   CHECK(design.at("fidelity_gap").at("first_stage_design").at("cost") == o.gap_first.cost);
   CHECK(design.at("cost") == d2.at("cost"));
@@ -258,7 +260,7 @@ TEST_CASE("staged studies run in order, report the fidelity gap and resume byte 
   // Resume after a crash in the second stage: its journal cut to 5 lines and the
   // final files gone. The journal comes back byte for byte.
   const std::string j2 = dir + "/stages/2_pulse/journal.jsonl";
-  const std::string full = slurp(j2);
+  const std::string full = fid_slurp(j2);
   std::string cut;
   std::istringstream in(full);
   std::string line;
@@ -266,13 +268,13 @@ TEST_CASE("staged studies run in order, report the fidelity gap and resume byte 
   std::ofstream(j2, std::ios::binary) << cut;
   std::filesystem::remove(dir + "/stages/2_pulse/design.json");
   std::filesystem::remove(dir + "/design.json");
-  const std::string j1 = slurp(dir + "/stages/1_impulse/journal.jsonl");
+  const std::string j1 = fid_slurp(dir + "/stages/1_impulse/journal.jsonl");
   opt.resume = true;
   const StagedOutcome again = run_staged_study(st, opt);
   CHECK(again.stages[0].skipped);
   CHECK_FALSE(again.stages[1].skipped);
-  CHECK(slurp(j2) == full);
-  CHECK(slurp(dir + "/stages/1_impulse/journal.jsonl") == j1);
+  CHECK(fid_slurp(j2) == full);
+  CHECK(fid_slurp(dir + "/stages/1_impulse/journal.jsonl") == j1);
   CHECK(again.final_best.cost == o.final_best.cost);
   std::filesystem::remove_all(dir);
 }
