@@ -69,11 +69,8 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
 
 namespace {
 
-// A study with "stages": each stage in its own model, from the previous stage's best.
-int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
-  const std::string dir = std::filesystem::path(args.study_path).parent_path().string();
-  const optimize::StagedStudy study =
-      optimize::parse_staged_study(doc, args.study_path, dir.empty() ? "." : dir);
+// The command's options for a study run; Ctrl-C from here on stops at the next evaluation.
+optimize::StudyRunOptions run_options(const OptimizeArgs& args) {
   optimize::StudyRunOptions opt;
   opt.threads = thread_count(args.threads);
   opt.resume = args.resume;
@@ -82,6 +79,15 @@ int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
   opt.stop_flag = &g_stop;
   g_stop.store(false);
   std::signal(SIGINT, on_sigint);
+  return opt;
+}
+
+// A study with "stages": each stage in its own model, from the previous stage's best.
+int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
+  const std::string dir = std::filesystem::path(args.study_path).parent_path().string();
+  const optimize::StagedStudy study =
+      optimize::parse_staged_study(doc, args.study_path, dir.empty() ? "." : dir);
+  const optimize::StudyRunOptions opt = run_options(args);
   const optimize::StagedOutcome o = optimize::run_staged_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {
@@ -107,14 +113,7 @@ int run_optimize(const OptimizeArgs& args) {
   for (const auto& o : args.overrides) io::apply_override(doc, o);
   if (optimize::is_staged_study(doc)) return run_staged(args, doc);
   const optimize::Study study = optimize::load_study(args.study_path, args.overrides);
-  optimize::StudyRunOptions opt;
-  opt.threads = thread_count(args.threads);
-  opt.resume = args.resume;
-  opt.out_dir = args.out_dir;
-  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
-  opt.stop_flag = &g_stop;
-  g_stop.store(false);
-  std::signal(SIGINT, on_sigint);
+  const optimize::StudyRunOptions opt = run_options(args);
   const optimize::StudyOutcome o = optimize::run_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {

@@ -19,7 +19,7 @@ struct JournalRecord {
   std::string purpose;    ///< "objective" or "gradient"
   std::vector<double> x;  ///< optimizer coordinates
   ProblemEvaluation result;
-  nlohmann::json line;  ///< the whole record as read
+  nlohmann::json line;   ///< the whole record as read
   long line_number = 0;  ///< 1-based line of the journal file
 };
 

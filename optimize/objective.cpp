@@ -17,13 +17,18 @@ const std::vector<std::string>& reduced_metric_names() {
   return names;
 }
 
+// The metrics only the full model reports.
+const std::vector<std::string>& full_only_metric_names() {
+  static const std::vector<std::string> names = {
+      "energy_drift",        "max_strain",          "max_penetration",  "max_slip",
+      "peak_actuator_force", "actuator_work_per_m", "cost_of_transport"};
+  return names;
+}
+
 const std::vector<std::string>& full_metric_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n = reduced_metric_names();
-    for (const char* k : {"energy_drift", "max_strain", "max_penetration", "max_slip",
-                          "peak_actuator_force", "actuator_work_per_m", "cost_of_transport"}) {
-      n.emplace_back(k);
-    }
+    n.insert(n.end(), full_only_metric_names().begin(), full_only_metric_names().end());
     return n;
   }();
   return names;
@@ -47,8 +52,7 @@ void add_full_metrics(const scene::Scene& scene, const RunResult& r, MetricMap& 
   if (scene.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring)
     mass += scene.pseudo_rigid.foot_mass * static_cast<double>(scene.legs.hips.size());
   out["cost_of_transport"] = per_m / (mass * scene.gravity);
-  for (const char* k : {"energy_drift", "max_strain", "max_penetration", "max_slip",
-                        "peak_actuator_force", "actuator_work_per_m", "cost_of_transport"}) {
+  for (const std::string& k : full_only_metric_names()) {
     out[k] = std::min(out[k], 1e9);  // a diverged run's monitors are huge, not infinite
   }
 }

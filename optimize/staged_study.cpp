@@ -32,21 +32,8 @@ const std::vector<std::string>& stage_study_keys() {
 // The study's scene, resolved (every default explicit) with its overrides applied.
 json resolved_scene(io::JsonReader& r, const json& doc, const std::string& file,
                     const std::string& base_dir) {
-  if (!doc.contains("scene"))
-    throw r.error("scene", "a scene file path or an inline scene object", "nothing");
-  const json& sv = doc.at("scene");
-  json scene_doc;
-  std::string scene_file = file + "#/scene";
-  if (sv.is_string()) {
-    std::filesystem::path p(sv.get<std::string>());
-    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    scene_file = p.lexically_normal().string();
-    scene_doc = io::read_json_file(scene_file);
-  } else if (sv.is_object()) {
-    scene_doc = sv;
-  } else {
-    throw r.error("scene", "a scene file path or an inline scene object", io::describe(sv));
-  }
+  std::string scene_file;
+  json scene_doc = read_study_scene(r, doc, file, base_dir, &scene_file);
   if (doc.contains("scene_overrides") && doc.at("scene_overrides").is_array()) {
     for (const auto& o : doc.at("scene_overrides"))
       if (o.is_string()) io::apply_override(scene_doc, o.get<std::string>());
@@ -375,13 +362,17 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
     }
   }
   const size_t last = st.stages.size() - 1;
-  o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt.threads);
-  o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt.threads);
   if (st.cross_evaluate) {
     o.cross.resize(st.stages.size());
     for (size_t i = 0; i < st.stages.size(); ++i)
       for (size_t j = 0; j < st.stages.size(); ++j)
         o.cross[i].push_back(evaluate_in_stage(st, j, o.stages[i].values, opt.threads));
+    // The gap is the table's last column: its first and last rows.
+    o.gap_first = o.cross.front()[last];
+    o.final_best = o.cross.back()[last];
+  } else {
+    o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt.threads);
+    o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt.threads);
   }
   o.wall_time = staged_now_s() - t0;
   io::write_file_atomic(o.out_dir + "/design.json",

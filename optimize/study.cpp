@@ -172,6 +172,24 @@ Parameter parse_parameter(io::JsonReader& p, const json& resolved,
 
 }  // namespace
 
+json read_study_scene(io::JsonReader& r, const json& doc, const std::string& file,
+                      const std::string& base_dir, std::string* scene_file) {
+  *scene_file = file + "#/scene";
+  if (!r.has("scene"))
+    throw r.error("scene", "a scene file path or an inline scene object", "nothing");
+  const json& sv = doc.at("scene");
+  r.optional("scene");
+  if (sv.is_string()) {
+    std::filesystem::path p(sv.get<std::string>());
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    *scene_file = p.lexically_normal().string();
+    return io::read_json_file(*scene_file);
+  }
+  if (!sv.is_object())
+    throw r.error("scene", "a scene file path or an inline scene object", io::describe(sv));
+  return sv;
+}
+
 Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
   Study st;
   st.file = file;
@@ -183,22 +201,8 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   }
   r.string_or("description", "");
   // The scene: a path (relative to the study file) or an inline object, plus overrides.
-  json scene_doc;
-  std::string scene_file = file + "#/scene";
-  if (!r.has("scene"))
-    throw r.error("scene", "a scene file path or an inline scene object", "nothing");
-  const json& sv = doc.at("scene");
-  r.optional("scene");
-  if (sv.is_string()) {
-    std::filesystem::path p(sv.get<std::string>());
-    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    scene_file = p.lexically_normal().string();
-    scene_doc = io::read_json_file(scene_file);
-  } else if (sv.is_object()) {
-    scene_doc = sv;
-  } else {
-    throw r.error("scene", "a scene file path or an inline scene object", io::describe(sv));
-  }
+  std::string scene_file;
+  json scene_doc = read_study_scene(r, doc, file, base_dir, &scene_file);
   if (r.has("scene_overrides")) {
     const json& ov = doc.at("scene_overrides");
     r.optional("scene_overrides");

@@ -11,6 +11,7 @@
 
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
+#include "sim/io/json_reader.hpp"
 
 namespace pronk::optimize {
 
@@ -34,6 +35,12 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
 
 /// Parses a study document (already read); `base_dir` resolves a relative scene path.
 Study parse_study(const nlohmann::json& doc, const std::string& file, const std::string& base_dir);
+
+/// The scene document of study `doc` (read by `r`): a file path relative to base_dir, or
+/// an inline object; *scene_file names it in error messages. Throws io::InputError.
+nlohmann::json read_study_scene(io::JsonReader& r, const nlohmann::json& doc,
+                                const std::string& file, const std::string& base_dir,
+                                std::string* scene_file);
 
 /// 64-bit FNV-1a of a string, as 16 hex digits.
 std::string fnv1a_hex(const std::string& text);

@@ -170,10 +170,9 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
         out.push_back("/pseudo_rigid/solver/energy_tol");  // verlet's energy budget
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
-        for (const char* k :
-             {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
-              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet",
-              "hop_trim_gain"}) {
+        for (const char* k : {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness",
+                              "contact_damping", "friction", "slip_velocity", "hip_rotation",
+                              "stance_attitude", "level_feet", "hop_trim_gain"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       } else if (!s.pseudo_rigid.hip_rotation) {

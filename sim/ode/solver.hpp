@@ -46,10 +46,10 @@ struct SolverOptions {
   /// coarsen by small switches or ones that undo the switching offset (verlet.cpp). Beyond
   /// 4096 sub-steps or below h_min the budget is not kept. Needs OdeSystem::kinetic_energy().
   double verlet_energy_budget = 0.0;
-  double h_initial = 0.0;      ///< first trial step [s] of adaptive methods; 0 = automatic
-  double h_max = 0.1;          ///< largest step [s]
-  double h_min = 1e-13;        ///< adaptive step below this is a step-size collapse [s]
-  double event_tol = 1e-13;    ///< event time tolerance [s]
+  double h_initial = 0.0;    ///< first trial step [s] of adaptive methods; 0 = automatic
+  double h_max = 0.1;        ///< largest step [s]
+  double h_min = 1e-13;      ///< adaptive step below this is a step-size collapse [s]
+  double event_tol = 1e-13;  ///< event time tolerance [s]
   /// Step attempts (accepted + rejected) of the whole run before it ends with a reason: the
   /// stepper's counters, which carry over reset() (restarts at events), not one integrate() call.
   long max_steps = 100000000;

@@ -169,7 +169,7 @@ struct Run {
   bool record = true;
   double dissipated = 0.0, work = 0.0;
   double positive_work = 0.0;  ///< leg actuators' work, positive steps only [J]
-  double balance0 = 0.0;  ///< energy balance at the start [J]
+  double balance0 = 0.0;       ///< energy balance at the start [J]
   /// The worst sampled departure of the balance [J] and where it first exceeded `blowup`.
   double sampled_drift = 0.0, blowup = 0.0, blowup_time = -1.0, blowup_drift = 0.0;
   bool stance = false;
