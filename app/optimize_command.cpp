@@ -7,8 +7,11 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
+#include <optional>
 #include <thread>
 
+#include "optimize/mpi/evaluation_farm.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
@@ -70,9 +73,10 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
 namespace {
 
 // The command's options for a study run; Ctrl-C from here on stops at the next evaluation.
-optimize::StudyRunOptions run_options(const OptimizeArgs& args) {
+optimize::StudyRunOptions run_options(const OptimizeArgs& args, optimize::JobFarm* farm) {
   optimize::StudyRunOptions opt;
-  opt.threads = thread_count(args.threads);
+  opt.threads = farm ? 1 : thread_count(args.threads);
+  opt.farm = farm;
   opt.resume = args.resume;
   opt.out_dir = args.out_dir;
   opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
@@ -83,11 +87,14 @@ optimize::StudyRunOptions run_options(const OptimizeArgs& args) {
 }
 
 // A study with "stages": each stage in its own model, from the previous stage's best.
-int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
+optimize::StagedStudy load_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
   const std::string dir = std::filesystem::path(args.study_path).parent_path().string();
-  const optimize::StagedStudy study =
-      optimize::parse_staged_study(doc, args.study_path, dir.empty() ? "." : dir);
-  const optimize::StudyRunOptions opt = run_options(args);
+  return optimize::parse_staged_study(doc, args.study_path, dir.empty() ? "." : dir);
+}
+
+int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
+               optimize::JobFarm* farm) {
+  const optimize::StudyRunOptions opt = run_options(args, farm);
   const optimize::StagedOutcome o = optimize::run_staged_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {
@@ -100,7 +107,9 @@ int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
       std::printf("%s: fidelity gap in the %s model: first stage's design cost %.6g, final %.6g\n",
                   study.name.c_str(), o.stages.back().model.c_str(), o.gap_first.cost,
                   o.final_best.cost);
-      std::printf("  results: %s/ (design.json, summary.md, stages/)\n", o.out_dir.c_str());
+      std::printf(
+          "  results: %s/ (design.json, summary.md, stages/), %s\n", o.out_dir.c_str(),
+          farm ? farm->describe().c_str() : (std::to_string(opt.threads) + " threads").c_str());
     }
   }
   return o.ok ? 0 : 1;
@@ -108,19 +117,36 @@ int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
 
 }  // namespace
 
-int run_optimize(const OptimizeArgs& args) {
-  nlohmann::json doc = io::read_json_file(args.study_path);
-  for (const auto& o : args.overrides) io::apply_override(doc, o);
-  if (optimize::is_staged_study(doc)) return run_staged(args, doc);
-  const optimize::Study study = optimize::load_study(args.study_path, args.overrides);
-  const optimize::StudyRunOptions opt = run_options(args);
+namespace {
+
+// The study (single or staged) after --set; throws io::InputError.
+struct LoadedStudy {
+  nlohmann::json doc;
+  std::optional<optimize::StagedStudy> staged;
+  std::optional<optimize::Study> single;
+};
+
+LoadedStudy load_any_study(const OptimizeArgs& args) {
+  LoadedStudy l;
+  l.doc = io::read_json_file(args.study_path);
+  for (const auto& o : args.overrides) io::apply_override(l.doc, o);
+  if (optimize::is_staged_study(l.doc))
+    l.staged.emplace(load_staged(args, l.doc));
+  else
+    l.single.emplace(optimize::load_study(args.study_path, args.overrides));
+  return l;
+}
+
+int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize::JobFarm* farm) {
+  const optimize::StudyRunOptions opt = run_options(args, farm);
   const optimize::StudyOutcome o = optimize::run_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {
+    const std::string workers = farm ? farm->describe() : std::to_string(opt.threads) + " threads";
     std::printf("%s: %s\n", study.name.c_str(), o.result.brief_report().c_str());
-    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed), %.1f s, %d threads\n",
+    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed), %.1f s, %s\n",
                 o.initial.cost, o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",
-                o.result.evaluations, o.replayed, o.wall_time, opt.threads);
+                o.result.evaluations, o.replayed, o.wall_time, workers.c_str());
     for (size_t i = 0; i < o.best.values.size(); ++i) {
       std::printf("  %-24s %12.6g -> %12.6g\n", study.evaluator.parameters[i].name.c_str(),
                   o.initial.values[i], o.best.values[i]);
@@ -131,6 +157,59 @@ int run_optimize(const OptimizeArgs& args) {
   const auto s = o.result.status;
   return (s == optimize::OptimizerStatus::kFailed || s == optimize::OptimizerStatus::kStopped) ? 1
                                                                                                : 0;
+}
+
+int run_loaded(const OptimizeArgs& args, const LoadedStudy& l, optimize::JobFarm* farm) {
+  return l.staged ? run_staged(args, *l.staged, farm) : run_single(args, *l.single, farm);
+}
+
+#ifdef PRONK_WITH_MPI
+// Under mpirun: every rank reads the study (and fails the same way on bad input,
+// rank 0 telling); rank 0 runs it with the evaluations' jobs spread over the ranks.
+int run_optimize_mpi(const OptimizeArgs& args) {
+  namespace mp = optimize::mpi;
+  mp::MpiSession session;
+  LoadedStudy l;
+  try {
+    l = load_any_study(args);
+  } catch (const io::InputError& e) {
+    if (session.rank() == 0) std::cerr << "pronk: error: " << e.what() << "\n";
+    return 2;
+  }
+  if (session.rank() != 0) {
+    mp::serve_evaluations();
+    return 0;
+  }
+  mp::MpiJobFarm farm(session);
+  int rc = 0;
+  try {
+    rc = run_loaded(args, l, &farm);
+  } catch (const io::InputError& e) {
+    std::cerr << "pronk: error: " << e.what() << "\n";
+    rc = 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pronk: failed: " << e.what() << "\n";
+    rc = 1;
+  }
+  farm.release_workers();
+  return rc;
+}
+#endif
+
+}  // namespace
+
+int run_optimize(const OptimizeArgs& args) {
+#ifdef PRONK_WITH_MPI
+  if (optimize::mpi::mpi_launched()) return run_optimize_mpi(args);
+#else
+  if (optimize::mpi::mpi_launched()) {
+    // N copies would each run the whole study and write the same journal.
+    std::cerr << "pronk: error: started by mpirun with several ranks, but this pronk was built "
+                 "without MPI (install libopenmpi-dev and rebuild)\n";
+    return 2;
+  }
+#endif
+  return run_loaded(args, load_any_study(args), nullptr);
 }
 
 int run_reproduce(const ReproduceArgs& args) {

@@ -4,6 +4,7 @@
 #include <exception>
 #include <limits>
 
+#include "optimize/evaluator_wire.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/simulate.hpp"
@@ -56,6 +57,7 @@ double* fast_field(scene::Scene& s, const std::string& ptr, double* lo, double* 
 
 Evaluator::Evaluator(EvaluatorConfig config)
     : config_(std::move(config)), pool_(std::make_unique<ThreadPool>(config_.threads)) {
+  if (config_.farm) farm_id_ = config_.farm->add_config(config_);
   try {
     base_scene_ = io::parse_scene(config_.scene_doc, config_.scene_file);
   } catch (const io::InputError&) {
@@ -114,22 +116,18 @@ Evaluation Evaluator::evaluate_full(const std::vector<double>& unit) const {
   return evaluate_impl(unit, true);
 }
 
-Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parallel) const {
-  const auto t0 = std::chrono::steady_clock::now();
-  Evaluation ev;
-  ev.unit = unit;
-  ev.values = physical_values(config_.parameters, unit);
+bool Evaluator::bind(const std::vector<double>& unit, Evaluation& ev, scene::Scene& base) const {
   const size_t nc = config_.constraints.size();
   auto fail = [&](std::string why) {
     ev.ok = false;
     ev.failure = std::move(why);
     ev.cost = config_.failure_cost;
     ev.constraints.assign(nc, config_.failure_cost);
-    ev.wall_time = seconds_since(t0);
-    return ev;
+    return false;
   };
+  ev.unit = unit;
+  ev.values = physical_values(config_.parameters, unit);
   if (static_cast<int>(unit.size()) != dimension()) return fail("wrong number of parameters");
-  scene::Scene base;
   try {
     base = scene_at(unit);
   } catch (const io::InputError& e) {
@@ -137,49 +135,53 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
   } catch (const std::exception& e) {
     return fail(std::string("internal error: ") + e.what());
   }
-  ev.binding_time = seconds_since(t0);
+  return true;
+}
 
-  // Scenario runs (in parallel) and the stability analysis (one more job).
-  const long n = static_cast<long>(config_.scenarios.scenarios.size());
-  ev.scenarios.resize(static_cast<size_t>(n));
-  std::vector<std::string> errors(static_cast<size_t>(n) + 1);
-  StabilityEstimate stab;
-  std::vector<long> strides(static_cast<size_t>(n), 0);
-  auto job = [&](long i) {
-    try {
-      // Job 0 is the stability analysis (the longest: start it first).
-      if (i == 0) {
-        if (config_.stability) stab = analyze_stability(base);
-        return;
-      }
-      --i;
-      const Scenario& sc = config_.scenarios.scenarios[static_cast<size_t>(i)];
-      const scene::Scene s = apply_scenario(base, sc, config_.scenarios);
-      RunOptions opts;
-      opts.record_trajectory = false;
-      const RunResult r = simulate(s, opts);
-      ScenarioOutcome& out = ev.scenarios[static_cast<size_t>(i)];
-      out.name = sc.name;
-      out.status = std::string(reduced::to_string(r.run.status));
-      out.reason = r.run.reason;
-      out.metrics = scenario_metrics(s, r, config_.fall_penalty, config_.settle);
-      out.strides = r.run.cost.touchdowns;
-      strides[static_cast<size_t>(i)] = r.run.cost.touchdowns;
-    } catch (const std::exception& e) {
-      errors[static_cast<size_t>(i)] = e.what();
+JobOutcome Evaluator::run_job(const scene::Scene& base, long job) const {
+  JobOutcome out;
+  try {
+    // Job 0 is the stability analysis (the longest: start it first).
+    if (job == 0) {
+      if (config_.stability) out.stability = analyze_stability(base);
+      return out;
     }
-  };
-  if (parallel) {
-    pool_->parallel_for(n + 1, job);
-  } else {
-    for (long i = 0; i <= n; ++i) job(i);
+    const Scenario& sc = config_.scenarios.scenarios.at(static_cast<size_t>(job - 1));
+    const scene::Scene s = apply_scenario(base, sc, config_.scenarios);
+    RunOptions opts;
+    opts.record_trajectory = false;
+    const RunResult r = simulate(s, opts);
+    out.scenario.name = sc.name;
+    out.scenario.status = std::string(reduced::to_string(r.run.status));
+    out.scenario.reason = r.run.reason;
+    out.scenario.metrics = scenario_metrics(s, r, config_.fall_penalty, config_.settle);
+    out.scenario.strides = r.run.cost.touchdowns;
+  } catch (const std::exception& e) {
+    out.error = e.what();
+    if (out.error.empty()) out.error = "an exception without a message";
   }
-  for (const auto& e : errors) {
-    if (!e.empty()) return fail("internal error: " + e);
+  return out;
+}
+
+void Evaluator::finish(Evaluation& ev, const scene::Scene& base,
+                       std::vector<JobOutcome>& jobs) const {
+  for (const auto& j : jobs) {
+    if (!j.error.empty()) {
+      ev.ok = false;
+      ev.failure = "internal error: " + j.error;
+      ev.cost = config_.failure_cost;
+      ev.constraints.assign(config_.constraints.size(), config_.failure_cost);
+      return;
+    }
   }
+  const StabilityEstimate& stab = jobs.front().stability;
+  for (size_t i = 1; i < jobs.size(); ++i) {
+    ev.strides += jobs[i].scenario.strides;
+    ev.scenarios.push_back(std::move(jobs[i].scenario));
+  }
+  const long n = static_cast<long>(ev.scenarios.size());
   ev.model = base.model;
   ev.simulations = n + (config_.stability ? stab.simulations : 0);
-  for (long s : strides) ev.strides += s;
   ev.strides += config_.stability ? stab.strides : 0;
   ev.spectral_radius = config_.stability ? stab.spectral_radius : 0.0;
   ev.stability_reason = stab.reason;
@@ -206,9 +208,75 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
     ev.aggregated[std::string(to_string(c.how)) + "(" + c.metric + ")"] = a;
     ev.constraints.push_back(c.has_max ? a - c.max : c.min - a);
   }
-  if (!std::isfinite(ev.cost)) return fail("non-finite cost");
+  if (!std::isfinite(ev.cost)) {
+    ev.ok = false;
+    ev.failure = "non-finite cost";
+    ev.cost = config_.failure_cost;
+    ev.constraints.assign(config_.constraints.size(), config_.failure_cost);
+  }
+}
+
+Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parallel) const {
+  if (config_.farm) return evaluate_on_farm({unit}).front();
+  const auto t0 = std::chrono::steady_clock::now();
+  Evaluation ev;
+  scene::Scene base;
+  if (!bind(unit, ev, base)) {
+    ev.wall_time = seconds_since(t0);
+    return ev;
+  }
+  ev.binding_time = seconds_since(t0);
+  // The scenario runs and the stability analysis, in parallel.
+  const long n = static_cast<long>(config_.scenarios.scenarios.size());
+  std::vector<JobOutcome> jobs(static_cast<size_t>(n) + 1);
+  auto job = [&](long i) { jobs[static_cast<size_t>(i)] = run_job(base, i); };
+  if (parallel) {
+    pool_->parallel_for(n + 1, job);
+  } else {
+    for (long i = 0; i <= n; ++i) job(i);
+  }
+  finish(ev, base, jobs);
   ev.wall_time = seconds_since(t0);
   return ev;
+}
+
+nlohmann::json Evaluator::compute_job(const std::vector<double>& job) const {
+  if (job.empty()) throw std::runtime_error("a job without its index");
+  const std::vector<double> unit(job.begin() + 1, job.end());
+  Evaluation ev;
+  scene::Scene base;
+  if (!bind(unit, ev, base)) throw std::runtime_error("a job whose parameters bind to no scene");
+  return job_outcome_to_wire(run_job(base, static_cast<long>(job.front())));
+}
+
+std::vector<Evaluation> Evaluator::evaluate_on_farm(
+    const std::vector<std::vector<double>>& xs) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const long n = static_cast<long>(config_.scenarios.scenarios.size());
+  std::vector<Evaluation> evs(xs.size());
+  std::vector<scene::Scene> bases(xs.size());
+  std::vector<std::vector<double>> jobs;
+  std::vector<size_t> owner;  // the point each job belongs to
+  for (size_t p = 0; p < xs.size(); ++p) {
+    if (!bind(xs[p], evs[p], bases[p])) continue;
+    for (long i = 0; i <= n; ++i) {
+      std::vector<double> job{static_cast<double>(i)};
+      job.insert(job.end(), xs[p].begin(), xs[p].end());
+      jobs.push_back(std::move(job));
+      owner.push_back(p);
+    }
+  }
+  const double binding = seconds_since(t0);
+  const std::vector<nlohmann::json> answers = config_.farm->run(farm_id_, *this, jobs);
+  std::vector<std::vector<JobOutcome>> outcomes(xs.size());
+  for (size_t j = 0; j < jobs.size(); ++j)
+    outcomes[owner[j]].push_back(job_outcome_from_wire(answers[j]));
+  for (size_t p = 0; p < xs.size(); ++p) {
+    if (evs[p].ok) finish(evs[p], bases[p], outcomes[p]);
+    evs[p].binding_time = binding;
+    evs[p].wall_time = seconds_since(t0);
+  }
+  return evs;
 }
 
 ProblemEvaluation Evaluator::to_problem(const Evaluation& e) {
@@ -226,6 +294,7 @@ ProblemEvaluation Evaluator::evaluate(const std::vector<double>& x) const {
 
 std::vector<Evaluation> Evaluator::evaluate_full_batch(
     const std::vector<std::vector<double>>& xs) const {
+  if (config_.farm) return evaluate_on_farm(xs);
   if (static_cast<int>(xs.size()) < pool_->threads()) {
     std::vector<Evaluation> out;
     for (const auto& x : xs) out.push_back(evaluate_full(x));
@@ -240,6 +309,11 @@ std::vector<Evaluation> Evaluator::evaluate_full_batch(
 
 std::vector<ProblemEvaluation> Evaluator::evaluate_batch(
     const std::vector<std::vector<double>>& xs) const {
+  if (config_.farm) {
+    std::vector<ProblemEvaluation> out;
+    for (const auto& e : evaluate_on_farm(xs)) out.push_back(to_problem(e));
+    return out;
+  }
   if (static_cast<int>(xs.size()) < pool_->threads()) {
     // Fewer points than threads: parallel over each point's scenarios instead.
     std::vector<ProblemEvaluation> out;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "optimize/job_farm.hpp"
 #include "optimize/objective.hpp"
 #include "optimize/parameters.hpp"
 #include "optimize/problem.hpp"
@@ -32,6 +33,9 @@ struct EvaluatorConfig {
   double failure_cost = 1e6;  ///< cost (and constraint value) of an evaluation that failed
   reduced::SettleCriteria settle;
   int threads = 1;  ///< worker threads for the scenario runs
+  /// Where the scenario runs go instead (MPI ranks); nullptr: the threads above.
+  /// Not part of what an evaluation computes: the numbers are the same either way.
+  JobFarm* farm = nullptr;
 };
 
 /// One scenario's outcome.
@@ -41,6 +45,14 @@ struct ScenarioOutcome {
   std::string reason;
   MetricMap metrics;
   long strides = 0;
+};
+
+/// One job of an evaluation: job 0 is the stability analysis, job i > 0 runs
+/// scenario i - 1.
+struct JobOutcome {
+  std::string error;  ///< non-empty: the job threw (an internal error)
+  StabilityEstimate stability;
+  ScenarioOutcome scenario;
 };
 
 /// One evaluation (SPEC 5.1).
@@ -91,8 +103,20 @@ class Evaluator final : public Problem {
   const EvaluatorConfig& config() const { return config_; }
   static ProblemEvaluation to_problem(const Evaluation& e);
 
+  /// A job given as {job, unit...}, answered as JSON (evaluator_wire.hpp): what a
+  /// JobFarm computes, here or on another rank.
+  nlohmann::json compute_job(const std::vector<double>& job) const;
+
  private:
   Evaluation evaluate_impl(const std::vector<double>& unit, bool parallel) const;
+  /// Binds the parameters; false (and ev failed) when they make no valid scene.
+  bool bind(const std::vector<double>& unit, Evaluation& ev, scene::Scene& base) const;
+  JobOutcome run_job(const scene::Scene& base, long job) const;
+  /// The evaluation from its jobs' outcomes: aggregation, objective, constraints.
+  void finish(Evaluation& ev, const scene::Scene& base, std::vector<JobOutcome>& jobs) const;
+  /// Every point's jobs on the farm at once.
+  std::vector<Evaluation> evaluate_on_farm(const std::vector<std::vector<double>>& xs) const;
+  long farm_id_ = -1;
   EvaluatorConfig config_;
   std::unique_ptr<ThreadPool> pool_;
   /// Fast binding: when every parameter names a plain number field of the

@@ -242,9 +242,11 @@ StageOutcome run_stage(const StagedStudy& st, size_t k, const std::map<std::stri
 
 // A design (all parameter values) evaluated by stage k's evaluator (model, scenarios).
 Evaluation evaluate_in_stage(const StagedStudy& st, size_t k,
-                             const std::map<std::string, double>& values, int threads) {
+                             const std::map<std::string, double>& values,
+                             const StudyRunOptions& opt) {
   EvaluatorConfig cfg = stage_study(st, k, values).evaluator;
-  cfg.threads = threads;
+  cfg.threads = opt.threads;
+  cfg.farm = opt.farm;
   const Evaluator ev(cfg);
   return ev.evaluate_full(ev.initial_point());
 }
@@ -366,13 +368,13 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
     o.cross.resize(st.stages.size());
     for (size_t i = 0; i < st.stages.size(); ++i)
       for (size_t j = 0; j < st.stages.size(); ++j)
-        o.cross[i].push_back(evaluate_in_stage(st, j, o.stages[i].values, opt.threads));
+        o.cross[i].push_back(evaluate_in_stage(st, j, o.stages[i].values, opt));
     // The gap is the table's last column: its first and last rows.
     o.gap_first = o.cross.front()[last];
     o.final_best = o.cross.back()[last];
   } else {
-    o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt.threads);
-    o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt.threads);
+    o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt);
+    o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt);
   }
   o.wall_time = staged_now_s() - t0;
   io::write_file_atomic(o.out_dir + "/design.json",

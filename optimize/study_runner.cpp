@@ -326,10 +326,11 @@ std::string compiler_id() {
 #endif
 }
 
-Evaluator validation_evaluator(const Study& st, int threads) {
+Evaluator validation_evaluator(const Study& st, int threads, JobFarm* farm) {
   EvaluatorConfig cfg = st.evaluator;
   cfg.scenarios = *st.validation;
   cfg.threads = threads;
+  cfg.farm = farm;
   return Evaluator(cfg);
 }
 
@@ -397,6 +398,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
 
   EvaluatorConfig cfg = st.evaluator;
   cfg.threads = opt.threads;
+  cfg.farm = opt.farm;
   const Evaluator evaluator(cfg);
 
   json header = {{"type", "header"},
@@ -449,7 +451,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
                                                            : o.result.best_x);
   if (st.validation) {
-    const Evaluator val = validation_evaluator(st, opt.threads);
+    const Evaluator val = validation_evaluator(st, opt.threads, opt.farm);
     o.validated = true;
     o.validation_initial = val.evaluate_full(o.initial.unit);
     o.validation_best = val.evaluate_full(o.best.unit);

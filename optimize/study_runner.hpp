@@ -15,6 +15,8 @@ struct StudyRunOptions {
   std::string out_dir;    ///< overrides the study's output directory
   bool progress = false;  ///< one throttled progress line on stderr
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C
+  /// The evaluations' scenario runs on other processes (MPI ranks); nullptr: threads.
+  JobFarm* farm = nullptr;
 };
 
 struct StudyOutcome {
@@ -37,7 +39,7 @@ StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
 std::string compiler_id();
 
 /// The evaluator of the study's validation set (same scene and parameters).
-Evaluator validation_evaluator(const Study& study, int threads);
+Evaluator validation_evaluator(const Study& study, int threads, JobFarm* farm = nullptr);
 
 /// design.json of a finished study (self-contained: reproducible from it alone).
 nlohmann::json design_document(const Study& study, const StudyOutcome& outcome, int threads);
