@@ -787,7 +787,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
           // Hop-height feedback: the takeoff speed this apex lacked, asked for next time.
           const double v_want = std::sqrt(2.0 * g * layer_at(t).scene->controller.hop_height);
           const double v_got = std::sqrt(2.0 * g * std::max(0.0, current.apex_height - l));
-          hop_trim = std::clamp(hop_trim + prs.hop_trim_gain * (v_want - v_got), -v_want, v_want);
+          hop_trim = std::clamp(hop_trim + prs.hop_trim_gain * (v_want - v_got), -v_want,
+                                prs.hop_trim_max * v_want);
         }
         // Everything the legs and the ground gave since touchdown (gravity removed).
         current.P_delivered = total_momentum(y) - p_touchdown +
@@ -883,7 +884,8 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       current.peak_leg_force = peak;
       current.H_delivered = H;
       run.stance = stance_end > t;
-      if (run.stance && model.spring_legs) {
+      if (run.stance && model.spring_legs &&
+          prs.pulse_start == scene::PseudoRigid::PulseStart::kBottom) {
         armed = true;  // fire at the bottom of the stance
         std::fill(leg_force.begin(), leg_force.end(), 0.0);
       }
