@@ -1,4 +1,5 @@
 #include "app/optimize_command.hpp"
+#include "app/view_command.hpp"
 
 #include <unistd.h>
 
@@ -103,6 +104,7 @@ int run_staged(const OptimizeArgs& args, const nlohmann::json& doc) {
       std::printf("  results: %s/ (design.json, summary.md, stages/)\n", o.out_dir.c_str());
     }
   }
+  if (o.ok) write_page_after(o.out_dir, args.quiet);
   return o.ok ? 0 : 1;
 }
 
@@ -128,6 +130,7 @@ int run_optimize(const OptimizeArgs& args) {
     std::printf("  results: %s/ (design.json, summary.md, history.svg, compare.svg)\n",
                 o.out_dir.c_str());
   }
+  write_page_after(o.out_dir, args.quiet);
   const auto s = o.result.status;
   return (s == optimize::OptimizerStatus::kFailed || s == optimize::OptimizerStatus::kStopped) ? 1
                                                                                                : 0;
