@@ -18,7 +18,7 @@ function indexOf(values, v) {
 function cellDetails(c, i, models, a0, a1) {
   const lines = [`cell ${c.cell[i]}: ${a0.name} = ${fmt(c[a0.name][i])}` + (a1 ? `, ${a1.name} = ${fmt(c[a1.name][i])}` : ''),
     `trials ${c.trials[i]}`];
-  for (const m of models) lines.push(`stabilized (${m}) ${c['stabilized_' + m][i]} of ${c.trials[i]}`);
+  for (const m of models) lines.push(`stabilized (${m}) ${fmt(c['stabilized_' + m][i] * c.trials[i], 3)} of ${c.trials[i]}`);
   const add = (k, label) => { if (c[k]) lines.push(`${label} ${fmt(c[k][i])}`); };
   add('mean_settle_strides', 'mean settle strides');
   add('mean_duty', 'mean duty');
@@ -36,7 +36,8 @@ export function mapReport(box, D) {
   const primary = s.primary_model ?? models[models.length - 1];
   const a0 = s.axes[0], a1 = s.axes[1];
   const ncol = a0.values.length, nrow = a1 ? a1.values.length : 1;
-  const frac = c.cell.map((_, i) => c['stabilized_' + primary][i] / Math.max(1, c.trials[i]));
+  // cells.csv: stabilized_<model> is the fraction of the cell's trials that stabilized.
+  const frac = c['stabilized_' + primary];
   box.append(el('p', { class: 'sub', text: `${ncol * nrow} cells × ${s.trials_per_cell} trials, models ${models.join(', ')} (primary ${primary}); colour: fraction of trials stabilized in the primary model; black line: the bisected boundary; hover a cell for details, click it to play its trial 0.` }));
   const bnd = columns(D.boundary);
   const plotBox = el('div', { class: 'plot' });

@@ -86,7 +86,7 @@ export function addMechanism(viewer, run) {
     }
     for (const l of lines) {
       const p = at(l.s.name + '.point', t);
-      const d = new THREE.Vector3(...l.s.direction).normalize().multiplyScalar(span * 0.8);
+      const d = new THREE.Vector3(...l.s.direction).normalize().multiplyScalar(span * 0.3);
       if (l.body) d.applyQuaternion(l.body.mesh.quaternion);
       setSegment(l.line, p.clone().sub(d), p.clone().add(d));
     }

@@ -14,10 +14,12 @@ export class Player {
       ...[0.1, 0.25, 0.5, 1, 2, 5, 10].map((s) => el('option', { value: s, text: `×${s}` })));
     speed.value = '1';
     speed.addEventListener('change', () => { this.speed = Number(speed.value); });
-    const bits = [this.play,
-      el('button', { text: '⏮ stride', title: 'previous touchdown', onclick: () => this.stride(-1) }),
-      el('button', { text: 'stride ⏭', title: 'next touchdown', onclick: () => this.stride(1) }),
-      this.slider, this.label, speed];
+    const bits = [this.play];
+    if (strideTimes.length) {
+      bits.push(el('button', { text: '◀ stride', title: 'previous touchdown', onclick: () => this.stride(-1) }),
+        el('button', { text: 'stride ▶', title: 'next touchdown', onclick: () => this.stride(1) }));
+    }
+    bits.push(this.slider, this.label, speed);
     if (onFollow) {
       const f = el('input', { type: 'checkbox' });
       f.addEventListener('change', () => onFollow(f.checked));

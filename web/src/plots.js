@@ -14,16 +14,27 @@ export function linePlot(container, x, series, opts = {}) {
   const box = el('div', { class: 'plot' });
   container.append(box);
   const scales = { x: { time: false } };
+  // y: 'asinh' (symmetric log: spans signs and decades) or 'log'.
+  if (opts.yscale === 'asinh') scales.y = { distr: 4, asinh: opts.asinh ?? 1 };
+  if (opts.yscale === 'log') scales.y = { distr: 3 };
   const axes = [{ label: opts.xlabel ?? 't [s]', size: 36 }, { label: opts.ylabel ?? '', size: 56 }];
+  if (opts.xticks) {  // category axis: labels at 0, 1, 2, ...
+    axes[0].splits = () => opts.xticks.map((_, i) => i);
+    axes[0].values = () => opts.xticks;
+    axes[0].rotate = -30;
+    axes[0].size = 70;
+  }
+  const padding = opts.xticks ? [12, 60, 0, 0] : undefined;
+  if (opts.yrange) scales.y = { range: opts.yrange };
   if (series.some((s) => s.scale === 'y2')) {
     scales.y2 = {};
     axes.push({ scale: 'y2', side: 1, label: opts.y2label ?? '', grid: { show: false }, size: 56 });
   }
   const u = new uPlot({
-    title: opts.title, width: widthOf(container), height: opts.height ?? 170,
+    title: opts.title, width: widthOf(container), height: opts.height ?? 170, padding,
     scales, axes,
     legend: { show: opts.legend !== false, live: true },
-    cursor: { drag: { x: false, y: false }, points: { show: !opts.manySeries } },
+    cursor: { y: false, drag: { x: false, y: false }, points: { show: !opts.manySeries } },
     series: [{ label: opts.xlabel ?? 't' }, ...series.map((s, i) => ({
       label: s.label, stroke: s.color ?? palette[i % palette.length], width: s.width ?? 1.5,
       dash: s.dash, scale: s.scale ?? 'y', spanGaps: false,

@@ -27,21 +27,30 @@ function historyPlot(box, h) {
     { label: 'feasible evaluation', values: good, points: true, size: 4, color: '#1f77b4' },
     { label: 'infeasible evaluation', values: bad, points: true, size: 4, color: '#d62728' },
     { label: 'best feasible so far', values: bestSoFar, color: '#2ca02c', width: 2 }],
-  { title: `optimization history (${n} evaluations)`, xlabel: 'evaluation', ylabel: 'cost', height: 230 });
+  { title: `optimization history (${n} evaluations; cost axis asinh: linear near 0, logarithmic beyond)`,
+    xlabel: 'evaluation', ylabel: 'cost', height: 230, yscale: 'asinh', asinh: asinhScale(h.cost) });
+}
+
+// The linear range of an asinh axis: a tenth of the typical cost magnitude.
+function asinhScale(costs) {
+  const a = costs.map(Math.abs).filter((v) => v > 0).sort((x, y) => x - y);
+  return a.length ? Math.max(1e-6, a[a.length >> 1] / 10) : 1;
 }
 
 function paramNames(stage) {
   return Object.keys(stage.design.parameters ?? {}).filter((p) => stage.history.columns.includes(p));
 }
 
-function parameterTraces(box, h, names) {
+function parameterTraces(box, h, names, stage) {
+  const specs = Object.fromEntries((stage.design.study_document?.parameters ?? []).map((p) => [p.name, p]));
   const grid = el('div', { class: 'grid3' });
   box.append(grid);
   for (const p of names) {
     const cell = el('div');
     grid.append(cell);
     linePlot(cell, h.index, [{ label: p, values: h[p], points: true, size: 3 }],
-      { title: p, xlabel: 'evaluation', height: 140, legend: false });
+      { title: p + (specs[p]?.log ? ' (log)' : ''), xlabel: 'evaluation', height: 140, legend: false,
+        yscale: specs[p]?.log ? 'log' : undefined });
   }
 }
 
@@ -50,29 +59,28 @@ function parameterTraces(box, h, names) {
 function parallelCoordinates(box, stage, h, names) {
   const specs = Object.fromEntries((stage.design.study_document?.parameters ?? []).map((p) => [p.name, p]));
   const axes = [...names, 'cost'];
+  const costs = [...h.cost].sort((a, b) => a - b);
+  const rank = (c) => costs.indexOf(c) / Math.max(1, costs.length - 1);
   const norm = axes.map((a) => {
+    if (a === 'cost') return rank;
     const log = specs[a]?.log === true;
     const f = (v) => (log ? Math.log(v) : v);
     const lo = specs[a]?.lower !== undefined ? f(specs[a].lower) : Math.min(...h[a].map(f));
     const hi = specs[a]?.upper !== undefined ? f(specs[a].upper) : Math.max(...h[a].map(f));
     return (v) => (hi > lo ? (f(v) - lo) / (hi - lo) : 0.5);
   });
-  const costs = [...h.cost].sort((a, b) => a - b);
-  const rank = (c) => costs.indexOf(c) / Math.max(1, costs.length - 1);
   const x = axes.map((_, i) => i);
   const series = [];
   const order = h.index.map((_, i) => i).sort((a, b) => h.cost[b] - h.cost[a]);  // best drawn last
   for (const i of order) {
-    series.push({ label: `#${h.index[i]}`, values: axes.map((a, k) => norm[k](h[a][i])),
+    series.push({ label: `#${h.index[i]}`, values: axes.map((a, k) => norm[k](k < names.length ? h[a][i] : h.cost[i])),
       color: ramp(1 - rank(h.cost[i])), width: 1 });
   }
   const u = linePlot(box, x, series, {
-    title: 'parallel coordinates (every evaluation; yellow = lowest cost; axes: bounds, log where the parameter is)',
-    xlabel: '', ylabel: 'normalized', height: 300, legend: false, manySeries: true,
+    title: 'parallel coordinates (every evaluation; yellow = lowest cost; parameters between their bounds, log where the parameter is; cost by rank)',
+    xlabel: '', ylabel: 'normalized', height: 320, legend: false, manySeries: true, xticks: axes, yrange: [0, 1],
   });
-  u.axes[0].values = () => axes;
-  u.axes[0].splits = () => x;
-  u.redraw(true, true);
+  test.parallelLines = u.series.length - 1;
 }
 
 function constraintPlot(box, h) {
@@ -109,7 +117,7 @@ function studySection(box, stage, title, withPlayback = true) {
   historyPlot(box, h);
   const names = paramNames(stage);
   box.append(el('h3', { text: 'parameter traces' }));
-  parameterTraces(box, h, names);
+  parameterTraces(box, h, names, stage);
   parallelCoordinates(box, stage, h, names);
   constraintPlot(box, h);
   const grid = el('div', { class: 'grid2' });

@@ -25,7 +25,8 @@ export function runScene(container, run, color) {
   const e = model.extent;
   const c = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, robot ? 0.5 * e : 0.3 * e);
   viewer.controls.target.copy(c);
-  viewer.camera.position.set(c.x - 1.2 * half, c.y - 2.0 * half, c.z + 1.1 * half);
+  const d = Math.min(half, 2.5 * e);  // long paths: frame the middle, zoom or follow for the rest
+  viewer.camera.position.set(c.x - 0.9 * d, c.y - 1.6 * d, c.z + 0.8 * d);
   viewer.controls.update();
   const strideTimes = robot && run.strides ? columns(run.strides).t_touchdown.slice() : [];
   let tracked = null;

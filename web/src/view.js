@@ -7,9 +7,10 @@ import { Player } from './player.js';
 function header(D) {
   const s = D.summary ?? {};
   const model = D.kind === 'robot' ? `${D.scene.model} model` : 'mechanism';
-  const bits = [`${model}`, `status ${s.status ?? '?'}${s.reason ? ' (' + s.reason + ')' : ''}`,
-    `t_end ${fmt(s.t_end ?? D.t_end)} s`];
-  if (D.sampling && D.sampling.every > 1) bits.push(`every ${D.sampling.every}th sample shown`);
+  const bits = [`${model}`, `status ${s.status ?? '?'}${s.reason ? ' (' + s.reason + ')' : ''}`];
+  if (s.t_end !== undefined) bits.push(`t_end ${fmt(s.t_end)} s`);
+  const every = (D.trajectory ?? D.nodes)?.every ?? 1;
+  if (every > 1) bits.push(`every ${every}th sample shown`);
   return el('header', {}, el('h1', { text: D.name }), el('div', { class: 'sub', text: bits.join(' · ') }));
 }
 
