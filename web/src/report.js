@@ -160,6 +160,17 @@ function stagedReport(box, D) {
         [['cost', gap.first_stage_design.cost, gap.final_design?.cost],
           ...metricRows(gap.first_stage_design.metrics, gap.final_design?.metrics)]));
   }
+  // Every stage's evaluations on one axis (each stage in its own model: costs differ by model).
+  const xs = [], series = D.stages.map((st) => ({ label: `${st.name} cost`, values: [], points: true, size: 4 }));
+  D.stages.forEach((st, k) => {
+    const h = columns(st.history);
+    for (let i = 0; i < h.length; i++) {
+      xs.push(xs.length);
+      series.forEach((se, j) => se.values.push(j === k ? h.cost[i] : null));
+    }
+  });
+  linePlot(box, xs, series, { title: 'stages: every evaluation, stage after stage (each in its own model)',
+    xlabel: 'evaluation (all stages)', ylabel: 'cost', height: 220, yscale: 'asinh', asinh: asinhScale(series.flatMap((se) => se.values.filter((v) => v !== null))) });
   let last = null;
   D.stages.forEach((s, i) => {
     const r = studySection(box, s, `stage ${s.name}`, i === D.stages.length - 1);

@@ -63,13 +63,15 @@ export function addRobot(viewer, run, color = 0x3b6ea8) {
     net.visible = state.arrows;
     if (state.arrows) setArrow(net, p, F, scale);
     const stance = parts.filter((q) => !q.disabled);
+    const inStance = tr.stance ? tr.stance[i] > 0.5 : F.length() > 1e-9;
     for (const q of parts) {
       const hw = q.hipBody.clone().applyMatrix4(body.matrixWorld);
       q.hip.position.copy(hw);
-      // Massless legs hang vertically at rest length (length - hip depth) in flight and
-      // stand on the ground below the hip while the foot is down.
+      // Massless legs hang vertically at rest length (length - hip depth) in flight.
+      // In stance (the pulse pushes on after the CoM rises past touchdown height) the leg
+      // extends and the foot stays on the ground.
       const legLen = length + q.hipBody.z;
-      const fz = Math.max(0, hw.z - legLen);
+      const fz = inStance && !q.disabled ? 0 : Math.max(0, hw.z - legLen);
       q.foot.position.set(hw.x, hw.y, fz);
       setSegment(q.leg, hw, q.foot.position);
       const down = fz <= 1e-6 && !q.disabled && F.length() > 1e-9;

@@ -50,7 +50,7 @@ export function robotPlots(box, run, onSeek) {
   } else {
     const { E, W } = reducedEnergy(run, tr);
     charts.push(linePlot(box, t, [{ label: 'E mechanical', values: E }, { label: 'E(0) + leg work', values: W, dash: [5, 4] }],
-      o('energy balance (leg work: trapezoid on the samples)', 'J')));
+      o('energy balance (leg work integrated on the samples: approximate where the force jumps between samples)', 'J')));
   }
   const st = columns(run.strides);
   let strideChart = null;

@@ -67,7 +67,7 @@ function evaluations(journal) {
 const pages = [
   { name: 'robot', file: 'robot/view.html', dir: 'robot', times: [0.1, 0.9] },
   { name: 'mechanism', file: 'mechanism/view.html', dir: 'mechanism', times: [0.05, 0.5] },
-  { name: 'study', file: 'study/report.html', dir: 'study/initial', times: [0.1, 0.9],
+  { name: 'study', file: 'study/report.html', dir: 'study/tuned', times: [0.1, 0.9],
     evaluations: evaluations(`${work}/study/journal.jsonl`) },
   { name: 'staged', file: 'staged/report.html', dir: 'staged/stages/3_full/tuned', times: [0.1, 0.9],
     evaluations: ['1_impulse', '2_pulse', '3_full'].map((s) => evaluations(`${work}/staged/stages/${s}/journal.jsonl`)).reduce((a, b) => a + b) },
@@ -113,16 +113,18 @@ for (const p of pages) {
     }
     check(p.name, 'the 3-D canvas is not blank', drawn.every((d) => d.colors >= 4), `${drawn.map((d) => d.colors).join(', ')} colours on a grid`);
     // Where the CSV puts the tracked point (map: the stored trial, read back from the page data).
-    let want;
+    let table;
     if (dir) {
-      const csv = readCsv(path.join(work, dir, hook.source.file));
-      want = ts.map((t) => hook.source.columns.map((c) => at(csv, c, t)));
-    } else {
-      want = await page.evaluate(() => window.pronkTest.tracked().last && null);
-      want = drawn.map((d) => d.last);  // map: the stored playback (no CSV); still checks motion below
+      table = readCsv(path.join(work, dir, hook.source.file));
+    } else {  // a map: the trial on show, as playback.json stores it
+      const pb = JSON.parse(fs.readFileSync(`${work}/map/playback.json`, 'utf8'));
+      const shown = await page.evaluate(() => pronkTest.playedCell());
+      const cell = pb.cells.find((c) => c.cell === shown);
+      table = Object.fromEntries(pb.columns.map((c, i) => [c, cell.data[i]]));
     }
+    const want = ts.map((t) => hook.source.columns.map((c) => at(table, c, t)));
     const err = Math.max(...drawn.map((d, k) => Math.hypot(...d.world.map((v, i) => v - want[k][i]))));
-    check(p.name, 'the drawn body is where the CSV says', err < 2e-3, `max ${err.toExponential(2)} m`);
+    check(p.name, 'the drawn body is where the CSV (map: playback.json) says', err < 2e-3, `max ${err.toExponential(2)} m`);
     const proj = [];
     for (const w of want) proj.push(await page.evaluate((ww) => pronkTest.project(ww), w));
     const dd = [drawn[1].screen.x - drawn[0].screen.x, drawn[1].screen.y - drawn[0].screen.y];

@@ -1,5 +1,6 @@
 #include "sim/io/page/csv_table.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>

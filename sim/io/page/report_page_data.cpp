@@ -37,7 +37,9 @@ nlohmann::json reportpage_design(const std::string& dir) {
   return d;
 }
 
-nlohmann::json reportpage_stage(const std::string& dir) {
+// history.csv and design.json of a study (or a stage), with its initial and tuned runs when
+// `playback`.
+nlohmann::json reportpage_stage(const std::string& dir, bool playback) {
   const CsvTable h = read_csv_table(dir + "/history.csv", true);
   for (const char* c : {"index", "cost"}) {
     if (std::find(h.columns.begin(), h.columns.end(), c) == h.columns.end()) {
@@ -48,7 +50,9 @@ nlohmann::json reportpage_stage(const std::string& dir) {
   nlohmann::json out = {{"history", sampled_table_json(h, kHistoryCells)},
                         {"design", reportpage_design(dir)}};
   for (const char* run : {"initial", "tuned"}) {
-    if (reportpage_has(dir + "/" + run)) out[run] = run_page_data(dir + "/" + run, kPlaybackCells);
+    if (playback && reportpage_has(dir + "/" + run)) {
+      out[run] = run_page_data(dir + "/" + run, kPlaybackCells);
+    }
   }
   return out;
 }
@@ -63,10 +67,9 @@ nlohmann::json reportpage_staged(const std::string& dir) {
   if (names.empty()) throw InputError(dir + "/stages", "", "one directory per stage", "none");
   out["stages"] = nlohmann::json::array();
   for (const std::string& n : names) {
-    nlohmann::json s = reportpage_stage(dir + "/stages/" + n);
-    s["name"] = n;
     // Playbacks of the last stage only: the page would carry one pair per stage otherwise.
-    if (n != names.back()) s.erase("initial"), s.erase("tuned");
+    nlohmann::json s = reportpage_stage(dir + "/stages/" + n, n == names.back());
+    s["name"] = n;
     out["stages"].push_back(std::move(s));
   }
   return out;
@@ -101,9 +104,9 @@ DirKind classify_directory(const std::string& dir) {
                ? DirKind::kMechanismRun
                : DirKind::kRobotRun;
   }
+  if (has("cells.csv")) return DirKind::kMap;  // a map has a journal.jsonl too
   if (has("stages") && has("design.json")) return DirKind::kStagedStudy;
   if (has("history.csv") || has("journal.jsonl")) return DirKind::kStudy;
-  if (has("cells.csv")) return DirKind::kMap;
   throw InputError(dir, "",
                    "a run, study or map directory written by pronk (trajectory.csv, nodes.csv, "
                    "history.csv, stages/ or cells.csv)",
@@ -121,7 +124,7 @@ nlohmann::json page_data(const std::string& dir, DirKind kind) {
       case DirKind::kMechanismRun:
         return run_page_data(dir);
       case DirKind::kStudy: {
-        nlohmann::json s = reportpage_stage(dir);
+        nlohmann::json s = reportpage_stage(dir, true);
         s["kind"] = "study";
         return s;
       }
