@@ -61,6 +61,16 @@ TEST_CASE("pronk simulate writes view.html from the run's files", "[cli][page]")
   REQUIRE(v.code == 0);
   CHECK(slurp(dir / "run/view.html") == first);
 
+  // A run that falls before its first touchdown (strides.csv without rows) gets its page too.
+  const Run fell = pronk(
+      dir, {"simulate", std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case1_body_only.json",
+            "--set", "/simulation/duration=1", "--set", "/initial/angular_velocity=[40,0,0]",
+            "--out", "fell", "-q"});
+  CHECK(fell.code == 1);
+  const nlohmann::json fd = viewcli_page_json(dir / "fell/view.html");
+  CHECK(fd["summary"]["status"] == "fell");
+  CHECK(fd["strides"]["rows"] == 0);
+
   // A mechanism run gets its page too.
   const Run m =
       pronk(dir, {"simulate", std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/pendulum.json",

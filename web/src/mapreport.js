@@ -103,11 +103,12 @@ export function mapReport(box, D) {
   // Legend of the colour ramp.
   box.append(el('div', { class: 'sub' }, 'fraction stabilized: ',
     ...[0, 0.25, 0.5, 0.75, 1].map((f) => { const sw = el('span', { text: ` ${f} ` }); sw.style.background = ramp(f); sw.style.color = f > 0.6 ? '#000' : '#fff'; return sw; })));
+  const played = playbackArea(box, D, c, u, hovered);
   if (bnd) {
     box.append(el('h3', { text: 'boundary per row' }),
       htmlTable(D.boundary.columns, bnd.row.map((_, r) => D.boundary.columns.map((k) => bnd[k][r]))));
   }
-  return playbackArea(box, D, c, u, hovered);
+  return played;
 }
 
 function playbackArea(box, D, c, u, hovered) {
@@ -127,7 +128,7 @@ function playbackArea(box, D, c, u, hovered) {
     if (!cell) return;
     if (current.scene) current.scene.viewer.dispose();
     area.replaceChildren();
-    const stage = el('div', { class: 'stage' });
+    const stage = el('div', { class: 'stage short' });
     area.append(stage);
     const run = { kind: 'robot', scene: cell.scene, trajectory: { columns: pb.columns, data: cell.data },
       strides: { columns: ['t_touchdown'], data: [cell.touchdowns] } };

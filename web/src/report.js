@@ -31,10 +31,10 @@ function historyPlot(box, h) {
     xlabel: 'evaluation', ylabel: 'cost', height: 230, yscale: 'asinh', asinh: asinhScale(h.cost) });
 }
 
-// The linear range of an asinh axis: a tenth of the typical cost magnitude.
+// The linear range of an asinh axis: the median cost magnitude.
 function asinhScale(costs) {
   const a = costs.map(Math.abs).filter((v) => v > 0).sort((x, y) => x - y);
-  return a.length ? Math.max(1e-6, a[a.length >> 1] / 10) : 1;
+  return a.length ? Math.max(1e-6, a[a.length >> 1]) : 1;
 }
 
 function paramNames(stage) {

@@ -48,7 +48,7 @@ double csvpage_round(double v, int digits) {
 
 }  // namespace
 
-CsvTable read_csv_table(const std::string& path, bool text_ok) {
+CsvTable read_csv_table(const std::string& path, bool text_ok, bool empty_ok) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError(path, "", "a CSV file written by pronk", "no such file");
@@ -83,7 +83,7 @@ CsvTable read_csv_table(const std::string& path, bool text_ok) {
       }
     }
   }
-  if (t.rows() == 0) throw InputError(path, "line 2", "at least one data row", "none");
+  if (t.rows() == 0 && !empty_ok) throw InputError(path, "line 2", "at least one data row", "none");
   return t;
 }
 

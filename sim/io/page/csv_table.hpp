@@ -18,8 +18,9 @@ struct CsvTable {
 
 /// Reads `path`. InputError (file, "line N" or "line N, column NAME", expected, found) for a
 /// missing or empty file, no data rows, a row of another length, a field that is not a finite
-/// number (unless `text_ok`: then empty fields are null and other text is kept as a string).
-CsvTable read_csv_table(const std::string& path, bool text_ok = false);
+/// number (unless `text_ok`: then empty fields are null and other text is kept as a string),
+/// no data row (unless `empty_ok`: strides.csv of a run that fell before its first touchdown).
+CsvTable read_csv_table(const std::string& path, bool text_ok = false, bool empty_ok = false);
 
 /// The table as page JSON {columns, data, rows, every}: every `every`-th row (and the last
 /// row) with at most `max_cells` numbers in all; numbers rounded to 6 significant digits

@@ -73,7 +73,7 @@ nlohmann::json runpage_robot(const std::string& dir, const nlohmann::json& scene
   nlohmann::json out = {{"kind", "robot"}, {"name", scene.value("name", "run")}, {"scene", scene}};
   out["summary"] = runpage_object(dir + "/summary.json");
   out["trajectory"] = sampled_table_json(runpage_table(dir + "/trajectory.csv", traj), cells);
-  CsvTable strides = read_csv_table(dir + "/strides.csv");
+  CsvTable strides = read_csv_table(dir + "/strides.csv", false, true);
   for (const char* c : {"stride", "t_touchdown", "apex_height", "duty_cycle"}) {
     const auto& cols = strides.columns;
     if (std::find(cols.begin(), cols.end(), c) == cols.end()) {
