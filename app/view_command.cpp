@@ -1,6 +1,7 @@
 #include "app/view_command.hpp"
 
 #include <cstdio>
+#include <exception>
 
 #include "sim/io/page/html_page.hpp"
 #include "sim/io/page/page_data.hpp"
@@ -29,8 +30,14 @@ int run_view(const ViewArgs& args) {
 }
 
 void write_page_after(const std::string& dir, bool quiet) {
-  const std::string page = io::page::write_directory_page(dir);
-  if (!quiet) print_page_line(page);
+  // The command's own results are written; a page that cannot be made from them (a study
+  // stopped before its design.json) is reported, not an error of the command.
+  try {
+    const std::string page = io::page::write_directory_page(dir);
+    if (!quiet) print_page_line(page);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pronk: no page for %s: %s\n", dir.c_str(), e.what());
+  }
 }
 
 void print_page_line(const std::string& page) {

@@ -23,7 +23,7 @@ int run_view(const ViewArgs& args);
 void print_page_line(const std::string& page);
 
 /// After a command that wrote `dir`: writes its page and prints where it is (or how to get
-/// pages) unless `quiet`.
+/// pages) unless `quiet`; a page that cannot be made is one line on stderr, not an error.
 void write_page_after(const std::string& dir, bool quiet);
 
 }  // namespace pronk::app
