@@ -9,6 +9,7 @@
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
+#include "app/view_command.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
@@ -30,6 +31,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* reproduce = add_reproduce_command(app, reproduce_args);
   MapArgs map_args;
   CLI::App* map = add_map_command(app, map_args);
+  ViewArgs view_args;
+  CLI::App* view = add_view_command(app, view_args);
   BenchArgs bench_args;
   CLI::App* bench = add_bench_command(app, bench_args);
   try {
@@ -57,6 +60,7 @@ int run_cli(int argc, const char* const* argv) {
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
     if (map->parsed()) return run_map_command(map_args);
+    if (view->parsed()) return run_view(view_args);
     if (bench->parsed()) return run_bench(bench_args);
   } catch (const io::InputError& e) {
     std::cerr << "pronk: error: " << e.what() << "\n";

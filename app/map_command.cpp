@@ -9,9 +9,12 @@
 #include <memory>
 #include <thread>
 
+#include "app/view_command.hpp"
+#include "optimize/map/map_playback.hpp"
 #include "optimize/map/map_runner.hpp"
 #include "optimize/map/map_study.hpp"
 #include "optimize/map/mpi_runner.hpp"
+#include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace pronk::app {
@@ -31,7 +34,13 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
     std::fprintf(stderr, "pronk map: %s: %s\n", st.name.c_str(), o.reason.c_str());
     return 1;
   }
-  if (quiet) return 0;
+  // One trial per cell to play in report.html, then the page.
+  io::write_file_atomic(o.out_dir + "/playback.json",
+                        optimize::map::map_playback_json(st).dump() + "\n");
+  if (quiet) {
+    write_page_after(o.out_dir, quiet);
+    return 0;
+  }
   std::printf("%s: %ld cells x %ld trials (%ld computed, %ld from the journal), %.1f s on %s\n",
               st.name.c_str(), o.cells, st.trials.count, o.cells_computed, o.cells_replayed,
               o.wall_time, workers.c_str());
@@ -48,9 +57,10 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
                 st.axes[0].name.c_str(), b.boundary);
   }
   std::printf(
-      "  results: %s/ (cells.csv, trials.csv, boundary.csv, summary.json, fraction.svg, "
-      "disagreement.svg)\n",
+      "  results: %s/ (cells.csv, trials.csv, boundary.csv, summary.json, playback.json, "
+      "fraction.svg, disagreement.svg)\n",
       o.out_dir.c_str());
+  write_page_after(o.out_dir, quiet);
   return 0;
 }
 

@@ -1,4 +1,5 @@
 #include "app/optimize_command.hpp"
+#include "app/view_command.hpp"
 
 #include <unistd.h>
 
@@ -112,6 +113,7 @@ int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
           farm ? farm->describe().c_str() : (std::to_string(opt.threads) + " threads").c_str());
     }
   }
+  if (o.ok) write_page_after(o.out_dir, args.quiet);
   return o.ok ? 0 : 1;
 }
 
@@ -154,6 +156,7 @@ int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize:
     std::printf("  results: %s/ (design.json, summary.md, history.svg, compare.svg)\n",
                 o.out_dir.c_str());
   }
+  write_page_after(o.out_dir, args.quiet);
   const auto s = o.result.status;
   return (s == optimize::OptimizerStatus::kFailed || s == optimize::OptimizerStatus::kStopped) ? 1
                                                                                                : 0;

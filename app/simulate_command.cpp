@@ -1,4 +1,5 @@
 #include "app/simulate_command.hpp"
+#include "app/view_command.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include "sim/io/json_reader.hpp"
 #include "sim/io/mechanism_loader.hpp"
 #include "sim/io/mechanism_output.hpp"
+#include "sim/io/page/page_data.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/io/simulation_output.hpp"
 #include "sim/pseudorigid/simulator.hpp"
@@ -19,9 +21,10 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "simulate",
       "Simulate one robot scene and write trajectory.csv, strides.csv, summary.json,\n"
-      "scene.resolved.json and SVG figures (with their gnuplot scripts) to the output directory.\n"
-      "A scene with \"kind\": \"mechanism\" is a pseudo-rigid mechanism: nodes.csv, bodies.csv,\n"
-      "energy.csv, summary.json, scene.resolved.json, energy.svg, motion.svg.");
+      "scene.resolved.json, SVG figures (with their gnuplot scripts) and view.html (3-D playback)\n"
+      "to the output directory. A scene with \"kind\": \"mechanism\" is a pseudo-rigid mechanism:\n"
+      "nodes.csv, bodies.csv, energy.csv, summary.json, scene.resolved.json, energy.svg,\n"
+      "motion.svg, view.html.");
   cmd->add_option("scene", args.scene_path, "Scene file (JSON)")->required();
   cmd->add_option("--model", args.model,
                   "Model: impulse, pulse or pseudo_rigid (default: the scene's)")
@@ -42,6 +45,7 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
   const pseudorigid::RunSummary run = pseudorigid::simulate(scene.mechanism);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.mechanism.name : args.out_dir;
   io::write_mechanism_outputs(dir, scene, run);
+  const std::string page = io::page::write_directory_page(dir);
   if (!args.quiet) {
     const auto& c = run.counters;
     std::printf("%s (mechanism, %s): %s, %s\n", scene.mechanism.name.c_str(),
@@ -62,13 +66,15 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
       std::printf("  Jacobian check: max relative difference %.3g\n", run.jacobian_check_error);
     }
     std::printf("  outputs in %s/\n", dir.c_str());
+    print_page_line(page);
   }
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }
 
 // One line per fact of a robot run, in any model.
 void print_robot_run(const scene::Scene& scene, const RunResult& r,
-                     const reduced::RunMetrics& metrics, const std::string& dir) {
+                     const reduced::RunMetrics& metrics, const std::string& dir,
+                     const std::string& page) {
   const auto& c = r.run.cost.solver;
   std::printf("%s (%s model): %s, %s\n", scene.name.c_str(),
               std::string(scene::to_string(scene.model)).c_str(),
@@ -97,6 +103,7 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
     std::printf("  warning: %s (%ld)\n", id.c_str(), count);
   }
   std::printf("  outputs in %s/\n", dir.c_str());
+  print_page_line(page);
 }
 
 }  // namespace
@@ -121,8 +128,8 @@ int run_simulate(const SimulateArgs& args) {
   }
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
-  io::write_simulation_outputs(dir, scene, r, metrics);
-  if (!args.quiet) print_robot_run(scene, r, metrics, dir);
+  const io::WrittenOutputs w = io::write_simulation_outputs(dir, scene, r, metrics);
+  if (!args.quiet) print_robot_run(scene, r, metrics, dir, w.page);
   return r.run.status == reduced::RunStatus::kCompleted ? 0 : 1;
 }
 

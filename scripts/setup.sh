@@ -8,6 +8,14 @@ pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-d
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
 # The optional peers of `pronk bench` (SUNDIALS CVODE, MuJoCo); CMake builds them when found.
 if [[ "${PRONK_WITH_PEERS:-0}" == 1 ]]; then pkgs+=(libsundials-dev libmujoco-dev); fi
+# The pages (view.html, report.html) and their browser test: Node, npm and Chromium; the test
+# job (scripts/test.sh) asks for them. Node and npm may come from elsewhere (command found).
+web=${PRONK_WITH_WEB:-0}
+if [[ "$web" == 1 ]]; then
+  pkgs+=(chromium)
+  command -v node >/dev/null || pkgs+=(nodejs)
+  command -v npm >/dev/null || pkgs+=(npm)
+fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -17,4 +25,14 @@ if ((${#missing[@]})); then
   SUDO=""; [[ $(id -u) -ne 0 ]] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+if [[ "$web" == 1 ]]; then
+  # The npm packages pinned by web/package-lock.json (three.js, uPlot; esbuild and
+  # playwright-core for the build and the test), then the page templates web/dist/*.html.
+  dir=$(cd "$(dirname "$0")/../web" && pwd)
+  if ! cmp -s "$dir/package-lock.json" "$dir/node_modules/.pronk-lock.json" 2>/dev/null; then
+    (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+    cp "$dir/package-lock.json" "$dir/node_modules/.pronk-lock.json"
+  fi
+  node "$dir/build.mjs" >/dev/null
 fi

@@ -8,6 +8,8 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 fuzz=${PRONK_FUZZ_SECONDS:-0}
 if [[ "$fuzz" != 0 ]]; then export PRONK_WITH_FUZZ=1; fi
+# Node, npm, Chromium and the pinned npm packages for the browser test of the pages.
+export PRONK_WITH_WEB=${PRONK_WITH_WEB:-1}
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" "$root/build"
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)")

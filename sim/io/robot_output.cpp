@@ -56,8 +56,8 @@ std::string figure_energy() {
 std::string figure_path() {
   return std::string(kSvgHeader) +
          "set output 'path3d.svg'\n"
-         "set title 'Path of the CoM'; set xlabel 'x [m]'; set ylabel 'y [m]'; set zlabel 'z "
-         "[m]'\nset view 60,30\n"
+         "set title 'Path of the CoM'; set xlabel 'x [m]'; set ylabel 'y [m]'\n" +
+         path3d_z_axis() +
          "splot 'trajectory.csv' u 2:3:4 w l t 'CoM', '' u 14:15:(0) w l dt 2 t 'setpoint'\n";
 }
 

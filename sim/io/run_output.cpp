@@ -159,6 +159,21 @@ const char* kSvgHeader =
     "set terminal svg size 900,640 dynamic enhanced font 'Helvetica,11'\n"
     "set datafile separator ','\nset key autotitle columnhead\nset grid\n";
 
+}  // namespace
+
+std::string path3d_z_axis() {
+  // The z axis of a 3-D CoM path is short on the page: from the ground up, at most four
+  // round ticks (1, 2 or 5 times a power of ten), the label beside the axis, the floor at z = 0.
+  return "stats 'trajectory.csv' u 4 nooutput name 'PZ'\n"
+         "pz_top = PZ_max > 0 ? PZ_max : 1\n"
+         "pz_step = 10**floor(log10(pz_top / 3.0)); pz_r = pz_top / pz_step\n"
+         "pz_step = pz_step * (pz_r <= 3 ? 1 : pz_r <= 6 ? 2 : pz_r <= 15 ? 5 : 10)\n"
+         "set zrange [0:*]; set ztics 0, pz_step; set xyplane at 0\n"
+         "set zlabel 'z [m]' rotate parallel\nset view 60,30,1,1.3\n";
+}
+
+namespace {
+
 std::string figure_motion(const std::string& title) {
   return std::string(kSvgHeader) + "set output 'motion.svg'\nset multiplot layout 2,2 title '" +
          title +
@@ -171,8 +186,8 @@ std::string figure_motion(const std::string& title) {
          "set title 'Body attitude (Euler 1-2-3)'; set ylabel 'angle [deg]'\n"
          "plot 'trajectory.csv' u 1:8 w l t 'roll', '' u 1:9 w l t 'pitch', '' u 1:10 w l t "
          "'yaw'\n"
-         "set title 'Trajectory of the CoM'; set xlabel 'x [m]'; set ylabel 'y [m]'; set zlabel "
-         "'z [m]'\n"
+         "set title 'Trajectory of the CoM'; set xlabel 'x [m]'; set ylabel 'y [m]'\n" +
+         path3d_z_axis() +
          "splot 'trajectory.csv' u 2:3:4 w l t 'CoM'\n"
          "unset multiplot\n";
 }

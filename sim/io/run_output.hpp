@@ -21,11 +21,16 @@ std::string strides_csv(const reduced::RunResult& run);
 
 struct WrittenOutputs {
   bool figures_rendered = false;
+  std::string page;  ///< view.html's path; empty when the page templates are absent
 };
 
 /// Writes every output file atomically into `dir` (created if missing).
 WrittenOutputs write_run_outputs(const std::string& dir, const scene::Scene& scene,
                                  const reduced::RunResult& run, const reduced::RunMetrics& metrics);
+
+/// Gnuplot lines for the z axis of a 3-D CoM path from trajectory.csv (column 4): from the
+/// ground, at most four round ticks, the label beside the axis.
+std::string path3d_z_axis();
 
 /// Serialises JSON after checking that it holds no non-finite number
 /// (nlohmann writes NaN as null); throws std::logic_error naming the pointer.

@@ -12,7 +12,8 @@
 namespace pronk::io {
 
 /// Writes the run's files into `dir`. For a full-model run the same robot is also
-/// simulated in the pulse model (milliseconds) and their strides compared.
+/// simulated in the pulse model (milliseconds) and their strides compared. Then view.html
+/// (when the page templates are there: WrittenOutputs::page).
 WrittenOutputs write_simulation_outputs(const std::string& dir, const scene::Scene& scene,
                                         const RunResult& r, const reduced::RunMetrics& metrics);
 
