@@ -17,11 +17,13 @@ import pronk  # noqa: E402
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "out/notebook_study2.png")
 
-# %% Study 2's starting scene (~50 % duty) and its tuned design (design.json).
+# %% Study 2's starting scene (~50 % duty) and its tuned design (design.json), both started
+# 0.3 m beside the setpoint with a 0.2 m/s sideways kick.
 design = pronk.read_design(ROOT / "results" / "study2_legged_pulse_duty50" / "design.json")
+kick = {"/initial/position/1": 0.3, "/initial/velocity": [0, 0.2, 0]}
 runs = {
-    "start": pronk.simulate(ROOT / "studies" / "scenes" / "legged_pulse_duty50.json"),
-    "study 2 tuned": pronk.simulate(design["scene"]),
+    "start": pronk.simulate(ROOT / "studies" / "scenes" / "legged_pulse_duty50.json", overrides=kick),
+    "study 2 tuned": pronk.simulate(design["scene"], overrides=kick),
 }
 for name, r in runs.items():
     m = r.metrics

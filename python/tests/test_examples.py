@@ -22,7 +22,10 @@ def test_notebook_script_simulates_plots_and_reads_a_design(tmp_path):
     png = tmp_path / "fig.png"
     out = run_example("notebook_simulate_plot.py", png)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
-    assert "study 2 tuned" in out and "completed" in out and "tuned parameters: pulse_duration" in out
+    start = next(l for l in out.splitlines() if l.startswith("start"))
+    tuned = next(l for l in out.splitlines() if l.startswith("study 2 tuned"))
+    assert "fell" in start and "completed" in tuned  # the design's improvement, seen in one run
+    assert "tuned parameters:" in out and "pulse_duration 0.3889" in out
 
 
 def test_scipy_minimize_improves_study2_and_stays_feasible():

@@ -152,5 +152,7 @@ def test_run_map_equals_the_cli(source_dir, run_cli, tmp_path):
         assert c["spectral_radius"][i] == float(row["spectral_radius"])
         assert c["mean_duty"][i] == float(row["mean_duty"])
     assert (tmp_path / "py" / "cells.csv").read_bytes() == (tmp_path / "cli" / "cells.csv").read_bytes()
-    assert m["boundaries"][0]["status"] == json.loads(
-        (tmp_path / "cli" / "summary.json").read_text())["boundaries"][0]["status"]
+    cli_summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    assert m["summary"] == cli_summary
+    row = cli_summary["boundary"]["rows"][0]
+    assert m["boundaries"][0]["boundary"] == row["boundary"]
