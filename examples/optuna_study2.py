@@ -50,9 +50,12 @@ def tune(study, trials, seed, native):
     return tpe
 
 
-def best_feasible(tpe):
+def best_trial(tpe):
+    """The feasible trial of least cost; without one, the least infeasible trial."""
     feasible = [t for t in tpe.trials if max(t.user_attrs["constraints"]) <= 0]
-    return min(feasible, key=lambda t: t.user_attrs["cost"]) if feasible else None
+    if feasible:
+        return min(feasible, key=lambda t: t.user_attrs["cost"]), True
+    return min(tpe.trials, key=lambda t: max(t.user_attrs["constraints"])), False
 
 
 def main():
@@ -70,8 +73,8 @@ def main():
     t0 = time.perf_counter()
     tpe = tune(study, args.trials, args.seed, args.constraints == "native")
     wall = time.perf_counter() - t0
-    best = best_feasible(tpe)
-    x = ([best.params[n] for n in study.names] if best else list(study.initial))
+    best, feasible = best_trial(tpe)
+    x = [best.params[n] for n in study.names]
     cost, g, metrics = study.evaluate(x)
     vcost, _, vmetrics = study.validation().evaluate(x)
 
@@ -81,7 +84,7 @@ def main():
                        "constraints": args.constraints,
                        "feasible_trials": sum(max(t.user_attrs["constraints"]) <= 0
                                               for t in tpe.trials),
-                       "feasible": best is not None, "best_cost": cost,
+                       "feasible": feasible, "best_cost": cost,
                        "spectral_radius": metrics["spectral_radius"],
                        "duty_mean": metrics["duty_mean"],
                        "validation_stabilized": vmetrics["stabilized"],

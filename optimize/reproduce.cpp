@@ -49,8 +49,8 @@ void rp_compare_all(ReproduceReport& rep, const nlohmann::json& record, const Ev
 
 }  // namespace
 
-ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path,
-                                 int threads, double rtol) {
+ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path, int threads,
+                                 double rtol) {
   if (!design.is_object() || design.value("type", "") != "pronk_design") {
     throw io::InputError(
         path, "/type", "\"pronk_design\" (a design.json of pronk optimize)",

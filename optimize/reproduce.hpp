@@ -28,7 +28,7 @@ struct ReproduceReport {
 /// Re-evaluates `design` (read from `path`, named in errors; a relative scene path of
 /// its study resolves against the path's directory) with `threads` workers.
 /// Throws io::InputError when it is not a design.json or lacks a recorded value.
-ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path,
-                                 int threads, double rtol);
+ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path, int threads,
+                                 double rtol);
 
 }  // namespace pronk::optimize

@@ -133,8 +133,8 @@ std::vector<std::string> overrides_arg(const py::handle& overrides) {
 
 int threads_arg(const py::handle& threads) {
   const int n = threads.is_none() ? 0 : threads.cast<int>();
-  if (n < 0) throw py::value_error("threads: expected 0 (all cores) or more, found " +
-                                   std::to_string(n));
+  if (n < 0)
+    throw py::value_error("threads: expected 0 (all cores) or more, found " + std::to_string(n));
   if (n > 0) return n;
   const unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? static_cast<int>(hw) : 1;

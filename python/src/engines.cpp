@@ -18,10 +18,11 @@ namespace mp = optimize::map;
 py::dict cells_dict(const mp::MapStudy& st, const std::vector<mp::CellSummary>& cells) {
   io::Table t;
   t.columns = {"index", "row", "column", "value0", "value1"};
-  for (const auto m : st.models) t.columns.push_back("fraction_" + std::string(scene::to_string(m)));
-  for (const char* c : {"disagreements", "a_only", "b_only", "mean_settle_strides",
-                        "spectral_radius", "peak_force", "mean_duty", "fell_fraction",
-                        "all_stabilized"}) {
+  for (const auto m : st.models)
+    t.columns.push_back("fraction_" + std::string(scene::to_string(m)));
+  for (const char* c :
+       {"disagreements", "a_only", "b_only", "mean_settle_strides", "spectral_radius", "peak_force",
+        "mean_duty", "fell_fraction", "all_stabilized"}) {
     t.columns.push_back(c);
   }
   for (const auto& c : cells) {
@@ -41,17 +42,17 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
   std::string file;
   nlohmann::json doc = document_arg(path_or_dict, &file);
   for (const auto& o : overrides_arg(overrides)) io::apply_override(doc, o);
-  std::string dir = base_dir.is_none()
-                        ? (is_path_arg(path_or_dict)
-                               ? std::filesystem::path(file).parent_path().string()
-                               : "")
-                        : py::module_::import("os").attr("fspath")(base_dir).cast<std::string>();
+  std::string dir =
+      base_dir.is_none()
+          ? (is_path_arg(path_or_dict) ? std::filesystem::path(file).parent_path().string() : "")
+          : py::module_::import("os").attr("fspath")(base_dir).cast<std::string>();
   const mp::MapStudy st = mp::parse_map_study(doc, file, dir.empty() ? "." : dir);
   mp::MapRunOptions opt;
   opt.threads = threads_arg(threads);
   opt.resume = resume;
   opt.figures = figures;
-  if (!out.is_none()) opt.out_dir = py::module_::import("os").attr("fspath")(out).cast<std::string>();
+  if (!out.is_none())
+    opt.out_dir = py::module_::import("os").attr("fspath")(out).cast<std::string>();
   mp::MapOutcome o;
   {
     py::gil_scoped_release nogil;
@@ -88,8 +89,8 @@ py::dict reproduce(const py::handle& design, const py::handle& threads, double r
 
 void bind_engines(py::module_& m) {
   m.def("run_map", &run_map, py::arg("path_or_dict"), py::kw_only(), py::arg("threads") = 0,
-        py::arg("out") = py::none(), py::arg("overrides") = py::none(),
-        py::arg("resume") = false, py::arg("figures") = true, py::arg("base_dir") = py::none(),
+        py::arg("out") = py::none(), py::arg("overrides") = py::none(), py::arg("resume") = false,
+        py::arg("figures") = true, py::arg("base_dir") = py::none(),
         "Runs a map study (\"kind\": \"map\") as `pronk map` does and writes its files to out\n"
         "(default: the study's output). Returns status, reason, out_dir, cells (dict of\n"
         "arrays, cells.csv's numbers), boundaries, summary (summary.json), simulations,\n"

@@ -13,8 +13,8 @@ namespace pronk::python {
 
 struct PyScene {
   scene::Scene scene;
-  std::string file;        ///< the path, or "<dict>"
-  nlohmann::json source;   ///< the document as given, overrides applied
+  std::string file;       ///< the path, or "<dict>"
+  nlohmann::json source;  ///< the document as given, overrides applied
 };
 
 void bind_scene_class(py::module_& m);

@@ -2,6 +2,7 @@
 // robot scene in any model, with the numbers `pronk simulate` writes
 // (summary.json, trajectory.csv, strides.csv; energy.csv and feet.csv for the
 // full model) as dicts and NumPy arrays, from the same functions.
+#include "sim/simulate.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/scene_object.hpp"
 #include "sim/io/input_error.hpp"
@@ -10,7 +11,6 @@
 #include "sim/io/scene_loader.hpp"
 #include "sim/io/simulation_output.hpp"
 #include "sim/reduced/metrics.hpp"
-#include "sim/simulate.hpp"
 
 namespace pronk::python {
 

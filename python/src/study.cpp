@@ -44,8 +44,8 @@ class PyStudy {
   py::object validation() const {
     if (!study_->validation) return py::none();
     auto v = std::make_shared<PyStudy>(*this);
-    v->evaluator_ = std::make_shared<optimize::Evaluator>(
-        optimize::validation_evaluator(*study_, threads_));
+    v->evaluator_ =
+        std::make_shared<optimize::Evaluator>(optimize::validation_evaluator(*study_, threads_));
     v->is_validation_ = true;
     return py::cast(v);
   }
@@ -55,10 +55,16 @@ class PyStudy {
   bool unit() const { return unit_; }
   int threads() const { return threads_; }
   bool is_validation() const { return is_validation_; }
+  /// The C++ evaluator's own wall time of the last evaluate() [s] (the bench's reference).
+  double last_wall_time = 0.0;
   const optimize::Evaluator& evaluator() const { return *evaluator_; }
 
-  py::array_t<double> lower() const { return coords([](const auto& p) { return p.lower; }, 0.0); }
-  py::array_t<double> upper() const { return coords([](const auto& p) { return p.upper; }, 1.0); }
+  py::array_t<double> lower() const {
+    return coords([](const auto& p) { return p.lower; }, 0.0);
+  }
+  py::array_t<double> upper() const {
+    return coords([](const auto& p) { return p.upper; }, 1.0);
+  }
   py::array_t<double> initial() const {
     std::vector<double> v;
     for (const auto& p : params()) v.push_back(unit_ ? p.to_unit(p.initial) : p.initial);
@@ -117,13 +123,14 @@ py::dict metrics_dict(const optimize::Evaluation& e) {
   return d;
 }
 
-py::tuple evaluate(const PyStudy& s, const py::handle& x) {
+py::tuple evaluate(PyStudy& s, const py::handle& x) {
   const std::vector<double> u = s.unit_of(x);
   optimize::Evaluation e;
   {
     py::gil_scoped_release nogil;
     e = s.evaluator().evaluate_full(u);
   }
+  s.last_wall_time = e.wall_time;  // under the GIL again
   return py::make_tuple(e.cost, to_array(e.constraints), metrics_dict(e));
 }
 
@@ -163,8 +170,8 @@ py::dict evaluate_full(const PyStudy& s, const py::handle& x) {
                               py::arg("reason") = o.reason, py::arg("strides") = o.strides,
                               py::arg("metrics") = m));
   }
-  return py::dict(py::arg("ok") = e.ok, py::arg("failure") = e.failure,
-                  py::arg("cost") = e.cost, py::arg("constraints") = to_array(e.constraints),
+  return py::dict(py::arg("ok") = e.ok, py::arg("failure") = e.failure, py::arg("cost") = e.cost,
+                  py::arg("constraints") = to_array(e.constraints),
                   py::arg("metrics") = metrics_dict(e), py::arg("unit") = to_array(e.unit),
                   py::arg("values") = to_array(e.values),
                   py::arg("spectral_radius") = e.spectral_radius,
@@ -212,19 +219,19 @@ void bind_study(py::module_& m) {
       "A staged study needs stage=NAME (that stage, from the study's initial values).")
       .def(py::init<const py::handle&, const py::handle&, bool, const py::handle&,
                     const py::handle&, const py::handle&>(),
-           py::arg("path_or_dict"), py::kw_only(), py::arg("threads") = 0,
-           py::arg("unit") = false, py::arg("overrides") = py::none(),
-           py::arg("stage") = py::none(), py::arg("base_dir") = py::none())
+           py::arg("path_or_dict"), py::kw_only(), py::arg("threads") = 0, py::arg("unit") = false,
+           py::arg("overrides") = py::none(), py::arg("stage") = py::none(),
+           py::arg("base_dir") = py::none())
       .def_property_readonly("name", [](const PyStudy& s) { return s.study().name; })
       .def_property_readonly("file", [](const PyStudy& s) { return s.study().file; })
-      .def_property_readonly("names", [](const PyStudy& s) {
-        return s.evaluator().variable_names();
-      })
-      .def_property_readonly("log_scale", [](const PyStudy& s) {
-        std::vector<bool> v;
-        for (const auto& p : s.params()) v.push_back(p.log_scale);
-        return v;
-      })
+      .def_property_readonly("names",
+                             [](const PyStudy& s) { return s.evaluator().variable_names(); })
+      .def_property_readonly("log_scale",
+                             [](const PyStudy& s) {
+                               std::vector<bool> v;
+                               for (const auto& p : s.params()) v.push_back(p.log_scale);
+                               return v;
+                             })
       .def_property_readonly("lower", &PyStudy::lower)
       .def_property_readonly("upper", &PyStudy::upper)
       .def_property_readonly("initial", &PyStudy::initial)
@@ -233,21 +240,26 @@ void bind_study(py::module_& m) {
       .def_property_readonly("unit", &PyStudy::unit)
       .def_property_readonly("threads", &PyStudy::threads)
       .def_property_readonly("is_validation", &PyStudy::is_validation)
-      .def_property_readonly("scenarios", [](const PyStudy& s) {
-        return s.evaluator().config().scenarios.scenarios.size();
-      })
-      .def_property_readonly("document", [](const PyStudy& s) {
-        return to_python(s.study().document);
-      })
-      .def("to_unit", [](const PyStudy& s, const py::handle& x) {
-        std::vector<double> v = vector_arg(x, s.params().size(), "x");
-        for (size_t i = 0; i < v.size(); ++i) v[i] = s.params()[i].to_unit(v[i]);
-        return to_array(v);
-      }, "Physical values -> optimizer coordinates in [0, 1] (clamped).")
-      .def("from_unit", [](const PyStudy& s, const py::handle& u) {
-        return to_array(optimize::physical_values(s.params(),
-                                                  vector_arg(u, s.params().size(), "u")));
-      }, "Optimizer coordinates -> physical values.")
+      .def_property_readonly(
+          "scenarios",
+          [](const PyStudy& s) { return s.evaluator().config().scenarios.scenarios.size(); })
+      .def_property_readonly("document",
+                             [](const PyStudy& s) { return to_python(s.study().document); })
+      .def(
+          "to_unit",
+          [](const PyStudy& s, const py::handle& x) {
+            std::vector<double> v = vector_arg(x, s.params().size(), "x");
+            for (size_t i = 0; i < v.size(); ++i) v[i] = s.params()[i].to_unit(v[i]);
+            return to_array(v);
+          },
+          "Physical values -> optimizer coordinates in [0, 1] (clamped).")
+      .def(
+          "from_unit",
+          [](const PyStudy& s, const py::handle& u) {
+            return to_array(
+                optimize::physical_values(s.params(), vector_arg(u, s.params().size(), "u")));
+          },
+          "Optimizer coordinates -> physical values.")
       .def("evaluate", &evaluate, py::arg("x"),
            "(cost, constraints array, metrics dict) at x. A point that makes an invalid scene\n"
            "gets the failure cost and violated constraints, with empty metrics (see\n"
@@ -259,8 +271,10 @@ void bind_study(py::module_& m) {
            "The whole evaluation as a dict: ok, failure, cost, constraints, metrics, unit,\n"
            "values, spectral_radius, stability_method, model, scenarios (per-scenario\n"
            "name, status, reason, strides, metrics).")
-      .def("__call__", [](const PyStudy& s, const py::handle& x) { return evaluate(s, x); },
-           py::arg("x"))
+      .def(
+          "__call__", [](PyStudy& s, const py::handle& x) { return evaluate(s, x); }, py::arg("x"))
+      .def_readonly("last_wall_time", &PyStudy::last_wall_time,
+                    "Seconds the C++ evaluator took inside the last evaluate() call.")
       .def("validation", &PyStudy::validation,
            "The same objective over the study's held-out validation scenarios, or None.")
       .def("scene_at", &scene_at, py::arg("x"),

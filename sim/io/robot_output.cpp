@@ -128,7 +128,9 @@ std::string robot_energy_csv(const robot::RobotRunResult& r) {
   return table_csv(robot_energy_table(r));
 }
 
-std::string robot_feet_csv(const robot::RobotRunResult& r) { return table_csv(robot_feet_table(r)); }
+std::string robot_feet_csv(const robot::RobotRunResult& r) {
+  return table_csv(robot_feet_table(r));
+}
 
 WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,
                                    const robot::RobotRunResult& r,
