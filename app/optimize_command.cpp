@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include "optimize/mpi/evaluation_farm.hpp"
+#include "optimize/reproduce.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
@@ -217,72 +219,22 @@ int run_optimize(const OptimizeArgs& args) {
 
 int run_reproduce(const ReproduceArgs& args) {
   const nlohmann::json design = io::read_json_file(args.design_path);
-  if (!design.is_object() || design.value("type", "") != "pronk_design") {
-    throw io::InputError(
-        args.design_path, "/type", "\"pronk_design\" (a design.json of pronk optimize)",
-        design.is_object() && design.contains("type") ? io::describe(design["type"]) : "nothing");
-  }
-  for (const char* key : {"study_document", "unit", "metrics", "cost"}) {
-    if (!design.contains(key)) {
-      throw io::InputError(args.design_path, std::string("/") + key, "a recorded value", "nothing");
-    }
-  }
-  const std::string dir = std::filesystem::path(args.design_path).parent_path().string();
-  const optimize::Study study = optimize::parse_study(
-      design.at("study_document"), args.design_path + "#/study_document", dir.empty() ? "." : dir);
-  optimize::EvaluatorConfig cfg = study.evaluator;
-  cfg.threads = thread_count(args.threads);
-  const optimize::Evaluator ev(cfg);
-  std::vector<double> unit;
-  try {
-    unit = design.at("unit").get<std::vector<double>>();
-  } catch (const nlohmann::json::exception&) {
-    throw io::InputError(args.design_path, "/unit", "an array of numbers",
-                         io::describe(design.at("unit")));
-  }
-  if (static_cast<int>(unit.size()) != ev.dimension()) {
-    throw io::InputError(args.design_path, "/unit", std::to_string(ev.dimension()) + " numbers",
-                         std::to_string(unit.size()));
-  }
-  const optimize::Evaluation e = ev.evaluate_full(unit);
-  const bool same_build = design.value("commit", "") == std::string(pronk::git_commit()) &&
-                          design.value("compiler", "") == optimize::compiler_id();
+  const optimize::ReproduceReport rep =
+      optimize::reproduce_design(design, args.design_path, thread_count(args.threads), args.rtol);
   std::printf(
       "reproducing %s (%s build: %s)\n", args.design_path.c_str(),
-      same_build ? "same" : "different",
-      same_build ? "bit-identical required" : ("rtol " + std::to_string(args.rtol)).c_str());
+      rep.same_build ? "same" : "different",
+      rep.same_build ? "bit-identical required" : ("rtol " + std::to_string(args.rtol)).c_str());
   std::printf("  %-28s %22s %22s %10s  %s\n", "metric", "recorded", "reproduced", "rel. diff", "");
-  int bad = 0;
-  auto compare = [&](const std::string& name, double recorded, double got) {
-    const double diff = std::abs(got - recorded);
-    const double rel = diff / std::max(std::abs(recorded), 1e-300);
-    const bool ok =
-        same_build ? (got == recorded) : (diff <= args.rtol * std::abs(recorded) + 1e-12);
-    if (!ok) ++bad;
-    std::printf("  %-28s %22.15g %22.15g %10.2e  %s\n", name.c_str(), recorded, got,
-                diff == 0 ? 0.0 : rel, ok ? "ok" : "MISMATCH");
-  };
-  compare("cost", design.at("cost").get<double>(), e.cost);
-  for (const auto& [k, v] : design.at("metrics").items()) {
-    const auto it = e.aggregated.find(k);
-    compare(k, v.get<double>(), it != e.aggregated.end() ? it->second : NAN);
+  for (const auto& v : rep.values) {
+    const double diff = std::abs(v.reproduced - v.recorded);
+    const double rel = diff / std::max(std::abs(v.recorded), 1e-300);
+    std::printf("  %-28s %22.15g %22.15g %10.2e  %s\n", v.name.c_str(), v.recorded, v.reproduced,
+                diff == 0 ? 0.0 : rel, v.ok ? "ok" : "MISMATCH");
   }
-  size_t compared = design.at("metrics").size() + 1;
-  if (study.validation && design.contains("validation") && design.at("validation").is_object()) {
-    const optimize::Evaluator val =
-        optimize::validation_evaluator(study, thread_count(args.threads));
-    const optimize::Evaluation ve = val.evaluate_full(unit);
-    const auto& rec = design.at("validation");
-    compare("validation cost", rec.at("cost").get<double>(), ve.cost);
-    for (const auto& [k, v] : rec.at("metrics").items()) {
-      const auto it = ve.aggregated.find(k);
-      compare("validation " + k, v.get<double>(), it != ve.aggregated.end() ? it->second : NAN);
-    }
-    compared += rec.at("metrics").size() + 1;
-  }
-  std::printf("%s: %d of %zu values differ\n", bad ? "NOT REPRODUCED" : "reproduced", bad,
-              compared);
-  return bad ? 1 : 0;
+  std::printf("%s: %ld of %zu values differ\n", rep.mismatches ? "NOT REPRODUCED" : "reproduced",
+              rep.mismatches, rep.values.size());
+  return rep.mismatches ? 1 : 0;
 }
 
 }  // namespace pronk::app

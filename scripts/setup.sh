@@ -4,6 +4,9 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
       libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin)
+# The Python module (pybind11 over Debian's python3) and what its tests and examples use.
+pkgs+=(pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy python3-matplotlib
+       python3-optuna)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
 # The optional peers of `pronk bench` (SUNDIALS CVODE, MuJoCo); CMake builds them when found.

@@ -1,7 +1,6 @@
 #include "sim/io/robot_output.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/plot.hpp"
@@ -12,12 +11,6 @@ namespace pronk::io {
 using json = nlohmann::json;
 
 namespace {
-
-void num(std::string& out, double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  out += buf;
-}
 
 const char* kSvgHeader =
     "set terminal svg size 900,640 dynamic enhanced font 'Helvetica,11'\n"
@@ -99,40 +92,44 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   return j;
 }
 
-std::string robot_energy_csv(const robot::RobotRunResult& r) {
-  std::string out =
-      "t,kinetic,gravitational,internal,leg,contact,dissipated,actuator_work,balance\n";
+Table robot_energy_table(const robot::RobotRunResult& r) {
+  Table t;
+  t.columns = {"t",       "kinetic",    "gravitational", "internal", "leg",
+               "contact", "dissipated", "actuator_work", "balance"};
+  t.data.reserve(r.samples.size() * t.columns.size());
   for (const auto& s : r.samples) {
     const auto& e = s.energies;
     const double balance = e.total() + s.dissipated - s.actuator_work;
-    bool first = true;
-    for (double v : {s.t, e.kinetic, e.gravitational, e.internal, e.leg, e.contact, s.dissipated,
-                     s.actuator_work, balance}) {
-      if (!first) out += ',';
-      first = false;
-      num(out, v);
-    }
-    out += '\n';
+    t.add_row({s.t, e.kinetic, e.gravitational, e.internal, e.leg, e.contact, s.dissipated,
+               s.actuator_work, balance});
   }
-  return out;
+  return t;
+}
+
+Table robot_feet_table(const robot::RobotRunResult& r) {
+  const size_t legs = r.samples.empty() ? 0 : r.samples.front().actuator_force.size();
+  const size_t feet = r.samples.empty() ? 0 : r.samples.front().normal_force.size();
+  Table t;
+  t.columns = {"t"};
+  for (size_t i = 0; i < legs; ++i) t.columns.push_back("F_act" + std::to_string(i));
+  for (size_t i = 0; i < feet; ++i) t.columns.push_back("N" + std::to_string(i));
+  for (size_t i = 0; i < feet; ++i) t.columns.push_back("z_foot" + std::to_string(i));
+  t.data.reserve(r.samples.size() * t.columns.size());
+  for (const auto& s : r.samples) {
+    t.data.push_back(s.t);
+    t.data.insert(t.data.end(), s.actuator_force.begin(), s.actuator_force.end());
+    t.data.insert(t.data.end(), s.normal_force.begin(), s.normal_force.end());
+    t.data.insert(t.data.end(), s.foot_z.begin(), s.foot_z.end());
+  }
+  return t;
+}
+
+std::string robot_energy_csv(const robot::RobotRunResult& r) {
+  return table_csv(robot_energy_table(r));
 }
 
 std::string robot_feet_csv(const robot::RobotRunResult& r) {
-  const size_t legs = r.samples.empty() ? 0 : r.samples.front().actuator_force.size();
-  const size_t feet = r.samples.empty() ? 0 : r.samples.front().normal_force.size();
-  std::string out = "t";
-  for (size_t i = 0; i < legs; ++i) out += ",F_act" + std::to_string(i);
-  for (size_t i = 0; i < feet; ++i) out += ",N" + std::to_string(i);
-  for (size_t i = 0; i < feet; ++i) out += ",z_foot" + std::to_string(i);
-  out += '\n';
-  for (const auto& s : r.samples) {
-    num(out, s.t);
-    for (double v : s.actuator_force) out += ',', num(out, v);
-    for (double v : s.normal_force) out += ',', num(out, v);
-    for (double v : s.foot_z) out += ',', num(out, v);
-    out += '\n';
-  }
-  return out;
+  return table_csv(robot_feet_table(r));
 }
 
 WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,

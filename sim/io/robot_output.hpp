@@ -23,6 +23,9 @@ nlohmann::json robot_summary_json(const scene::Scene& scene, const robot::RobotR
                                   const reduced::RunMetrics& metrics,
                                   const robot::FidelityDiscrepancy* pulse = nullptr);
 
+/// energy.csv and feet.csv as tables and as text.
+Table robot_energy_table(const robot::RobotRunResult& r);
+Table robot_feet_table(const robot::RobotRunResult& r);
 std::string robot_energy_csv(const robot::RobotRunResult& r);
 std::string robot_feet_csv(const robot::RobotRunResult& r);
 

@@ -1,7 +1,6 @@
 #include "sim/io/run_output.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "sim/io/atomic_file.hpp"
@@ -28,21 +27,6 @@ void check_finite(const json& j, const std::string& ptr) {
   }
 }
 
-// %.17g keeps every bit: outputs of identical runs are byte-identical.
-void num(std::string& out, double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  out += buf;
-}
-void row(std::string& out, std::initializer_list<double> values) {
-  bool first = true;
-  for (double v : values) {
-    if (!first) out += ',';
-    first = false;
-    num(out, v);
-  }
-  out += '\n';
-}
 }  // namespace
 
 std::string dump_checked(const json& j) {
@@ -95,64 +79,101 @@ json run_summary_json(const scene::Scene& scene, const reduced::RunResult& run,
           {"commit", pronk::git_commit()}};
 }
 
-std::string trajectory_csv(const reduced::RunResult& run) {
-  std::string out =
-      "t,x,y,z,vx,vy,vz,roll_deg,pitch_deg,yaw_deg,wx,wy,wz,x_d,y_d,stance,Fx,Fy,Fz\n";
-  out.reserve(out.size() + run.trajectory.size() * 200);
+Table trajectory_table(const reduced::RunResult& run) {
+  Table t;
+  t.columns = {"t",  "x",  "y",  "z",   "vx",  "vy",     "vz", "roll_deg", "pitch_deg", "yaw_deg",
+               "wx", "wy", "wz", "x_d", "y_d", "stance", "Fx", "Fy",       "Fz"};
+  t.data.reserve(run.trajectory.size() * t.columns.size());
   for (const auto& s : run.trajectory) {
     const Eigen::Vector3d a = s.euler123 * kRadToDeg;
-    row(out, {s.t, s.position.x(), s.position.y(), s.position.z(), s.velocity.x(), s.velocity.y(),
-              s.velocity.z(), a.x(), a.y(), a.z(), s.omega.x(), s.omega.y(), s.omega.z(),
-              s.setpoint.x(), s.setpoint.y(), s.stance ? 1.0 : 0.0, s.leg_force_world.x(),
-              s.leg_force_world.y(), s.leg_force_world.z()});
+    t.add_row({s.t, s.position.x(), s.position.y(), s.position.z(), s.velocity.x(), s.velocity.y(),
+               s.velocity.z(), a.x(), a.y(), a.z(), s.omega.x(), s.omega.y(), s.omega.z(),
+               s.setpoint.x(), s.setpoint.y(), s.stance ? 1.0 : 0.0, s.leg_force_world.x(),
+               s.leg_force_world.y(), s.leg_force_world.z()});
   }
-  return out;
+  return t;
 }
 
-std::string strides_csv(const reduced::RunResult& run) {
-  std::string out =
-      "stride,t_touchdown,x,y,z,vx,vy,vz,roll_deg,pitch_deg,yaw_deg,x_d,y_d,apex_height,"
-      "stance_duration,stride_time,duty_cycle,Px_req,Py_req,Pz_req,Hx_req,Hy_req,Hz_req,"
-      "Px_del,Py_del,Pz_del,Hx_del,Hy_del,Hz_del,gravity_compensation,peak_leg_force,"
-      "active_legs,allocation_ok\n";
+Table strides_table(const reduced::RunResult& run) {
+  Table t;
+  t.columns = {"stride",
+               "t_touchdown",
+               "x",
+               "y",
+               "z",
+               "vx",
+               "vy",
+               "vz",
+               "roll_deg",
+               "pitch_deg",
+               "yaw_deg",
+               "x_d",
+               "y_d",
+               "apex_height",
+               "stance_duration",
+               "stride_time",
+               "duty_cycle",
+               "Px_req",
+               "Py_req",
+               "Pz_req",
+               "Hx_req",
+               "Hy_req",
+               "Hz_req",
+               "Px_del",
+               "Py_del",
+               "Pz_del",
+               "Hx_del",
+               "Hy_del",
+               "Hz_del",
+               "gravity_compensation",
+               "peak_leg_force",
+               "active_legs",
+               "allocation_ok"};
+  t.data.reserve(run.strides.size() * t.columns.size());
   for (const auto& s : run.strides) {
     const Eigen::Vector3d a = s.euler123 * kRadToDeg;
-    row(out, {static_cast<double>(s.index),
-              s.t_touchdown,
-              s.position.x(),
-              s.position.y(),
-              s.position.z(),
-              s.velocity.x(),
-              s.velocity.y(),
-              s.velocity.z(),
-              a.x(),
-              a.y(),
-              a.z(),
-              s.setpoint.x(),
-              s.setpoint.y(),
-              s.has_apex ? s.apex_height : 0.0,
-              s.stance_duration,
-              s.stride_time,
-              s.duty_cycle,
-              s.P_requested.x(),
-              s.P_requested.y(),
-              s.P_requested.z(),
-              s.H_requested.x(),
-              s.H_requested.y(),
-              s.H_requested.z(),
-              s.P_delivered.x(),
-              s.P_delivered.y(),
-              s.P_delivered.z(),
-              s.H_delivered.x(),
-              s.H_delivered.y(),
-              s.H_delivered.z(),
-              s.gravity_compensation,
-              s.peak_leg_force,
-              static_cast<double>(s.active_legs),
-              s.allocation == control::AllocationStatus::kOk ? 1.0 : 0.0});
+    t.add_row({static_cast<double>(s.index),
+               s.t_touchdown,
+               s.position.x(),
+               s.position.y(),
+               s.position.z(),
+               s.velocity.x(),
+               s.velocity.y(),
+               s.velocity.z(),
+               a.x(),
+               a.y(),
+               a.z(),
+               s.setpoint.x(),
+               s.setpoint.y(),
+               s.has_apex ? s.apex_height : 0.0,
+               s.stance_duration,
+               s.stride_time,
+               s.duty_cycle,
+               s.P_requested.x(),
+               s.P_requested.y(),
+               s.P_requested.z(),
+               s.H_requested.x(),
+               s.H_requested.y(),
+               s.H_requested.z(),
+               s.P_delivered.x(),
+               s.P_delivered.y(),
+               s.P_delivered.z(),
+               s.H_delivered.x(),
+               s.H_delivered.y(),
+               s.H_delivered.z(),
+               s.gravity_compensation,
+               s.peak_leg_force,
+               static_cast<double>(s.active_legs),
+               s.allocation == control::AllocationStatus::kOk ? 1.0 : 0.0});
   }
-  return out;
+  return t;
 }
+
+std::string trajectory_csv(const reduced::RunResult& run) {
+  return table_csv(trajectory_table(run));
+}
+
+std::string strides_csv(const reduced::RunResult& run) { return table_csv(strides_table(run)); }
 
 namespace {
 const char* kSvgHeader =

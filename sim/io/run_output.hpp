@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/io/table.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/run_result.hpp"
 #include "sim/scene/scene.hpp"
@@ -16,6 +17,9 @@ namespace pronk::io {
 nlohmann::json run_summary_json(const scene::Scene& scene, const reduced::RunResult& run,
                                 const reduced::RunMetrics& metrics);
 
+/// trajectory.csv and strides.csv as tables (the columns the README lists) and as text.
+Table trajectory_table(const reduced::RunResult& run);
+Table strides_table(const reduced::RunResult& run);
 std::string trajectory_csv(const reduced::RunResult& run);
 std::string strides_csv(const reduced::RunResult& run);
 

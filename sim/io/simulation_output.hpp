@@ -5,11 +5,18 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "sim/io/run_output.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::io {
+
+/// summary.json of the run: for a full-model run with the stride-by-stride
+/// discrepancy against the pulse model of the same robot (simulated here).
+nlohmann::json simulation_summary_json(const scene::Scene& scene, const RunResult& r,
+                                       const reduced::RunMetrics& metrics);
 
 /// Writes the run's files into `dir`. For a full-model run the same robot is also
 /// simulated in the pulse model (milliseconds) and their strides compared. Then view.html

@@ -1,0 +1,143 @@
+#include <cmath>
+#include <thread>
+
+#include "python/src/bindings.hpp"
+#include "sim/io/json_reader.hpp"
+#include "sim/io/scene_loader.hpp"
+
+namespace pronk::python {
+
+py::object to_python(const nlohmann::json& j) {
+  using V = nlohmann::json::value_t;
+  switch (j.type()) {
+    case V::null:
+      return py::none();
+    case V::boolean:
+      return py::bool_(j.get<bool>());
+    case V::number_integer:
+      return py::int_(j.get<std::int64_t>());
+    case V::number_unsigned:
+      return py::int_(j.get<std::uint64_t>());
+    case V::number_float:
+      return py::float_(j.get<double>());
+    case V::string:
+      return py::str(j.get_ref<const std::string&>());
+    case V::array: {
+      py::list out;
+      for (const auto& v : j) out.append(to_python(v));
+      return out;
+    }
+    case V::object: {
+      py::dict out;
+      for (auto it = j.begin(); it != j.end(); ++it) out[py::str(it.key())] = to_python(*it);
+      return out;
+    }
+    default:
+      return py::none();  // binary and discarded values never occur in pronk's documents
+  }
+}
+
+nlohmann::json from_python(const py::handle& obj) {
+  if (obj.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(obj)) return obj.cast<bool>();
+  if (py::isinstance<py::int_>(obj)) return obj.cast<std::int64_t>();
+  if (py::isinstance<py::float_>(obj)) return obj.cast<double>();
+  if (py::isinstance<py::str>(obj)) return obj.cast<std::string>();
+  if (py::isinstance<py::dict>(obj)) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [k, v] : obj.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(k)) {
+        throw py::type_error("JSON object keys must be str, found " +
+                             py::repr(k).cast<std::string>());
+      }
+      out[k.cast<std::string>()] = from_python(v);
+    }
+    return out;
+  }
+  if (py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj)) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& v : obj) out.push_back(from_python(v));
+    return out;
+  }
+  // NumPy: arrays and scalars through their Python equivalents.
+  if (py::hasattr(obj, "tolist") && py::hasattr(obj, "dtype")) {
+    return from_python(obj.attr("tolist")());
+  }
+  throw py::type_error("cannot be written as JSON: " + py::repr(obj).cast<std::string>());
+}
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+py::dict table_to_dict(const io::Table& t) {
+  py::dict out;
+  const size_t rows = t.rows(), cols = t.columns.size();
+  for (size_t c = 0; c < cols; ++c) {
+    py::array_t<double> a(static_cast<py::ssize_t>(rows));
+    double* p = a.mutable_data();
+    for (size_t r = 0; r < rows; ++r) p[r] = t.at(r, c);
+    out[py::str(t.columns[c])] = std::move(a);
+  }
+  return out;
+}
+
+std::vector<double> vector_arg(const py::handle& x, size_t n, const char* what) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x);
+  if (!a || a.ndim() != 1 || static_cast<size_t>(a.shape(0)) != n) {
+    throw py::value_error(std::string(what) + ": expected a sequence of " + std::to_string(n) +
+                          " numbers, found " + py::repr(x).cast<std::string>());
+  }
+  std::vector<double> v(a.data(), a.data() + n);
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(v[i])) {
+      throw py::value_error(std::string(what) + ": expected finite numbers, found " +
+                            std::to_string(v[i]) + " at index " + std::to_string(i));
+    }
+  }
+  return v;
+}
+
+bool is_path_arg(const py::handle& path_or_dict) {
+  return py::isinstance<py::str>(path_or_dict) || py::hasattr(path_or_dict, "__fspath__");
+}
+
+nlohmann::json document_arg(const py::handle& path_or_dict, std::string* file) {
+  if (is_path_arg(path_or_dict)) {
+    *file = py::module_::import("os").attr("fspath")(path_or_dict).cast<std::string>();
+    return io::read_json_file(*file);
+  }
+  if (py::isinstance<py::dict>(path_or_dict)) {
+    *file = "<dict>";
+    return from_python(path_or_dict);
+  }
+  throw py::type_error("expected a path (str or os.PathLike) or a dict, found " +
+                       py::repr(path_or_dict).cast<std::string>());
+}
+
+std::vector<std::string> overrides_arg(const py::handle& overrides) {
+  std::vector<std::string> out;
+  if (overrides.is_none()) return out;
+  if (py::isinstance<py::dict>(overrides)) {
+    for (const auto& [k, v] : overrides.cast<py::dict>()) {
+      out.push_back(k.cast<std::string>() + "=" + from_python(v).dump());
+    }
+    return out;
+  }
+  if (py::isinstance<py::str>(overrides)) return {overrides.cast<std::string>()};
+  for (const auto& o : overrides) out.push_back(o.cast<std::string>());
+  return out;
+}
+
+int threads_arg(const py::handle& threads) {
+  const int n = threads.is_none() ? 0 : threads.cast<int>();
+  if (n < 0)
+    throw py::value_error("threads: expected 0 (all cores) or more, found " + std::to_string(n));
+  if (n > 0) return n;
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(hw) : 1;
+}
+
+}  // namespace pronk::python

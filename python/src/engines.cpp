@@ -1,0 +1,106 @@
+// pronk.run_map and pronk.reproduce: the robustness-map engine and the
+// reproduction of a tuned design, as `pronk map` and `pronk reproduce` run them.
+#include <filesystem>
+
+#include "optimize/map/map_runner.hpp"
+#include "optimize/map/map_study.hpp"
+#include "optimize/reproduce.hpp"
+#include "python/src/bindings.hpp"
+#include "sim/io/scene_loader.hpp"
+
+namespace pronk::python {
+
+namespace {
+
+namespace mp = optimize::map;
+
+// The cells of a map as columns (cells.csv's numbers; one fraction column per model).
+py::dict cells_dict(const mp::MapStudy& st, const std::vector<mp::CellSummary>& cells) {
+  io::Table t;
+  t.columns = {"index", "row", "column", "value0", "value1"};
+  for (const auto m : st.models)
+    t.columns.push_back("fraction_" + std::string(scene::to_string(m)));
+  for (const char* c :
+       {"disagreements", "a_only", "b_only", "mean_settle_strides", "spectral_radius", "peak_force",
+        "mean_duty", "fell_fraction", "all_stabilized"}) {
+    t.columns.push_back(c);
+  }
+  for (const auto& c : cells) {
+    t.data.insert(t.data.end(), {static_cast<double>(c.index), static_cast<double>(c.row),
+                                 static_cast<double>(c.column), c.value0, c.value1});
+    t.data.insert(t.data.end(), c.fraction.begin(), c.fraction.end());
+    t.add_row({static_cast<double>(c.disagreements), static_cast<double>(c.a_only),
+               static_cast<double>(c.b_only), c.mean_settle_strides, c.spectral_radius,
+               c.peak_force, c.mean_duty, c.fell_fraction, c.all_stabilized ? 1.0 : 0.0});
+  }
+  return table_to_dict(t);
+}
+
+py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, const py::handle& out,
+                 const py::handle& overrides, bool resume, bool figures,
+                 const py::handle& base_dir) {
+  std::string file;
+  nlohmann::json doc = document_arg(path_or_dict, &file);
+  for (const auto& o : overrides_arg(overrides)) io::apply_override(doc, o);
+  std::string dir =
+      base_dir.is_none()
+          ? (is_path_arg(path_or_dict) ? std::filesystem::path(file).parent_path().string() : "")
+          : py::module_::import("os").attr("fspath")(base_dir).cast<std::string>();
+  const mp::MapStudy st = mp::parse_map_study(doc, file, dir.empty() ? "." : dir);
+  mp::MapRunOptions opt;
+  opt.threads = threads_arg(threads);
+  opt.resume = resume;
+  opt.figures = figures;
+  if (!out.is_none())
+    opt.out_dir = py::module_::import("os").attr("fspath")(out).cast<std::string>();
+  mp::MapOutcome o;
+  {
+    py::gil_scoped_release nogil;
+    o = mp::run_map(st, opt);
+  }
+  py::list boundaries;
+  for (const auto& b : o.boundaries) boundaries.append(to_python(mp::to_json(b)));
+  return py::dict(py::arg("status") = o.status, py::arg("reason") = o.reason,
+                  py::arg("out_dir") = o.out_dir, py::arg("cells") = cells_dict(st, o.summaries),
+                  py::arg("boundaries") = boundaries, py::arg("summary") = to_python(o.summary),
+                  py::arg("simulations") = o.simulations, py::arg("wall_time") = o.wall_time);
+}
+
+py::dict reproduce(const py::handle& design, const py::handle& threads, double rtol) {
+  std::string file;
+  const nlohmann::json doc = document_arg(design, &file);
+  const int n = threads_arg(threads);
+  optimize::ReproduceReport rep;
+  {
+    py::gil_scoped_release nogil;
+    rep = optimize::reproduce_design(doc, file, n, rtol);
+  }
+  py::list values;
+  for (const auto& v : rep.values) {
+    values.append(py::dict(py::arg("name") = v.name, py::arg("recorded") = v.recorded,
+                           py::arg("reproduced") = v.reproduced, py::arg("ok") = v.ok));
+  }
+  return py::dict(py::arg("reproduced") = rep.mismatches == 0,
+                  py::arg("same_build") = rep.same_build, py::arg("rtol") = rep.rtol,
+                  py::arg("mismatches") = rep.mismatches, py::arg("values") = values);
+}
+
+}  // namespace
+
+void bind_engines(py::module_& m) {
+  m.def("run_map", &run_map, py::arg("path_or_dict"), py::kw_only(), py::arg("threads") = 0,
+        py::arg("out") = py::none(), py::arg("overrides") = py::none(), py::arg("resume") = false,
+        py::arg("figures") = true, py::arg("base_dir") = py::none(),
+        "Runs a map study (\"kind\": \"map\") as `pronk map` does and writes its files to out\n"
+        "(default: the study's output). Returns status, reason, out_dir, cells (dict of\n"
+        "arrays, cells.csv's numbers), boundaries, summary (summary.json), simulations,\n"
+        "wall_time. The GIL is released while it runs.");
+  m.def("reproduce", &reproduce, py::arg("design"), py::kw_only(), py::arg("threads") = 0,
+        py::arg("rtol") = 1e-6,
+        "Re-evaluates a design.json (path or dict) of pronk optimize and compares every\n"
+        "recorded value: bit-identical on the recording build, within rtol otherwise.\n"
+        "Returns reproduced, same_build, rtol, mismatches, values (name, recorded,\n"
+        "reproduced, ok).");
+}
+
+}  // namespace pronk::python
