@@ -884,8 +884,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
       current.peak_leg_force = peak;
       current.H_delivered = H;
       run.stance = stance_end > t;
-      if (run.stance && model.spring_legs &&
-          prs.pulse_start == scene::PseudoRigid::PulseStart::kBottom) {
+      if (run.stance && model.spring_legs) {
         armed = true;  // fire at the bottom of the stance
         std::fill(leg_force.begin(), leg_force.end(), 0.0);
       }

@@ -153,12 +153,6 @@ struct PseudoRigid {
   /// [-1, hop_trim_max] x sqrt(2 g h). Legs whose dampers take much of the stance
   /// energy need more than one sqrt(2 g h) [-].
   double hop_trim_max = 1.0;
-  /// When the spring legs' pulse fires: at the bottom of the stance (the thrust
-  /// phase, seed fig. 2.13; a pulse longer than the thrust phase runs past lift-off
-  /// and its tail is lost on the feet) or at touchdown (the whole pulse within a
-  /// stance longer than it).
-  enum class PulseStart { kBottom, kTouchdown };
-  PulseStart pulse_start = PulseStart::kBottom;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
