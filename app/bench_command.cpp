@@ -445,7 +445,8 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
   // every sample ("energy_error_rel") or at the flight apexes, hop to hop
   // ("energy_error_apex_rel": it leaves out a fixed-step method's bounded transient inside
   // impacts). Returns its CPU time [s] (-1: none) and the run.
-  auto fastest_drop = [&drop](const char* error_field, json* run, const char* body = "four_masses") {
+  auto fastest_drop = [&drop](const char* error_field, json* run,
+                              const char* body = "four_masses") {
     double best = -1;
     *run = {{"found", false}};
     for (const auto& r : drop) {

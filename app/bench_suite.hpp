@@ -85,7 +85,7 @@ struct FidelityPoint {
   /// rigid rung: max |apex_k - apex_k(pseudo_rigid)| over the strides both have, at the same
   /// pulse [m] (its agreement with the four-mass body); -1 elsewhere.
   double apex_max_vs_four_mass = -1.0;
-  std::vector<double> apexes;           ///< apex heights of strides 2.. [m] (not written out)
+  std::vector<double> apexes;  ///< apex heights of strides 2.. [m] (not written out)
 };
 
 /// One rung at one duty cycle: a cell of the ladder's robustness map (the seeded

@@ -33,8 +33,10 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   const std::string body = r.choice_or("body", "four_masses", {"four_masses", "rigid"});
   p.body = body == "rigid" ? scene::PseudoRigid::BodyKind::kRigid
                            : scene::PseudoRigid::BodyKind::kFourMasses;
-  if (p.body == scene::PseudoRigid::BodyKind::kRigid && p.hips == scene::PseudoRigid::Hips::kDummy) {
-    throw r.error("hips", "\"ghost_points\" with \"body\": \"rigid\" (a rigid body has no dummy masses)",
+  if (p.body == scene::PseudoRigid::BodyKind::kRigid &&
+      p.hips == scene::PseudoRigid::Hips::kDummy) {
+    throw r.error("hips",
+                  "\"ghost_points\" with \"body\": \"rigid\" (a rigid body has no dummy masses)",
                   "\"dummy_masses\"");
   }
   p.dummy_ratio = r.number_or("dummy_ratio", p.dummy_ratio, 1e-6, 1.0);

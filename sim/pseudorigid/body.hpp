@@ -51,9 +51,9 @@ struct Body {
   bool rigid = false;
   Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Identity();  ///< body frame [1/(kg m^2)]
   Eigen::Quaterniond attitude0 = Eigen::Quaterniond::Identity();  ///< rigid: initial attitude
-  Eigen::Vector3d angular_momentum0 = Eigen::Vector3d::Zero();   ///< rigid: initial, world
-  Eigen::Vector3d principal_moments = Eigen::Vector3d::Ones();  ///< rigid [kg m^2]
-  Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();  ///< rigid: columns, body frame
+  Eigen::Vector3d angular_momentum0 = Eigen::Vector3d::Zero();    ///< rigid: initial, world
+  Eigen::Vector3d principal_moments = Eigen::Vector3d::Ones();    ///< rigid [kg m^2]
+  Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();   ///< rigid: columns, body frame
 };
 
 /// Places four masses for the tensor. Returns false with a reason (naming the

@@ -36,7 +36,8 @@ int add_body(Mechanism& m, const BodySpec& spec, std::string* error) {
   const int index = static_cast<int>(m.bodies.size());
   b.min_edge = 1e300;
   for (int i = 0; i < 4; ++i) {
-    for (int k = i + 1; k < 4; ++k) b.min_edge = std::min(b.min_edge, (b.local[i] - b.local[k]).norm());
+    for (int k = i + 1; k < 4; ++k)
+      b.min_edge = std::min(b.min_edge, (b.local[i] - b.local[k]).norm());
   }
   if (spec.rigid) {
     // One mass for the translation; the rotation's states follow all masses' (model.hpp).

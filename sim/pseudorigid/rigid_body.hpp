@@ -43,8 +43,7 @@ inline Eigen::Vector3d rigid_omega(const Body& b, const Eigen::Matrix3d& rot,
 }
 
 /// dq/dt = 1/2 (0, omega) q for the (unnormalised) quaternion at y[r] into dydt[r..r+3].
-void rigid_quaternion_rate(const ode::Vec& y, int r, const Eigen::Vector3d& omega,
-                           ode::Vec& dydt);
+void rigid_quaternion_rate(const ode::Vec& y, int r, const Eigen::Vector3d& omega, ode::Vec& dydt);
 
 /// Method verlet's drift of the rotation over h [s] at fixed L (see the file comment):
 /// updates the quaternion y[r..r+3] (normalised on return).

@@ -20,7 +20,8 @@ void weights(const Mechanism& m, const NodeRef& n, double sign,
     if (b.rigid) {
       // A rigid body's point moves with its CoM mass M and its rotation: its inverse effective
       // mass is at most 1/M + |r|^2 / I_min = w^2 / M, w = sqrt(1 + M |r|^2 / I_min).
-      const double w = std::sqrt(1.0 + b.mass * g.local.squaredNorm() / b.principal_moments.minCoeff());
+      const double w =
+          std::sqrt(1.0 + b.mass * g.local.squaredNorm() / b.principal_moments.minCoeff());
       out.emplace_back(first, sign * w);
       return;
     }

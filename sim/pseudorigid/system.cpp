@@ -25,8 +25,8 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
       frames_(m.bodies.size()),
       dframes_(m.bodies.size()),
       force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))),
-      torque_(m.bodies.size(), Vector3d::Zero()),
-      rigid_(m.bodies.size()) {
+      rigid_(m.bodies.size()),
+      torque_(m.bodies.size(), Vector3d::Zero()) {
   for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
   for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b) {
     rot_.push_back(m.rotation_state(b));
@@ -678,8 +678,9 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
       Vector3d j = Vector3d::Zero();
       double un = dir.dot(u);
       if (rigid) {
-        w = along(plane ? dir : s.type == SurfaceType::kLine ? unit_or_zero(u - un * dir)
-                                                               : unit_or_zero(u));
+        w = along(plane                          ? dir
+                  : s.type == SurfaceType::kLine ? unit_or_zero(u - un * dir)
+                                                 : unit_or_zero(u));
       }
       const double damp = h * s.damping / (1.0 + h * s.damping * w);
       if (plane) {
@@ -850,7 +851,7 @@ void MechanismSystem::jac_transfer(const NodeRef& target, const Vector3d& force)
 
 void MechanismSystem::jacobian(double t, const ode::Vec& y,
                                Eigen::SparseMatrix<double>& jac) const {
-  if (any_rigid_) {  // a rigid body's rotation: central differences of the whole RHS
+  if (any_rigid_) {  // a rigid body's rotation: forward differences of the whole RHS
     ode::difference_jacobian(*this, t, y, jac);
     return;
   }

@@ -119,6 +119,12 @@ class MechanismSystem final : public ode::OdeSystem {
   long zero_length_triggers() const { return zero_length_; }
 
  private:
+  /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
+  struct RigidState {
+    Eigen::Matrix<double, 7, 1> key = Eigen::Matrix<double, 7, 1>::Constant(-1e300);
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< world [rad/s]
+  };
   struct Transfer {
     int mass;
     Eigen::Matrix3d t;  ///< force on the mass = t * force on the node
@@ -213,13 +219,7 @@ class MechanismSystem final : public ode::OdeSystem {
   /// Set while conservative_rhs() runs: velocities of dissipative elements count as zero.
   mutable bool conservative_ = false;
   mutable ode::Vec dissipate_before_;  ///< dissipate(): the momenta before its updates
-  std::vector<int> rot_;                ///< per body: its rotation states (rigid), else -1
-  /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
-  struct RigidState {
-    Eigen::Matrix<double, 7, 1> key = Eigen::Matrix<double, 7, 1>::Constant(-1e300);
-    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< world [rad/s]
-  };
+  std::vector<int> rot_;               ///< per body: its rotation states (rigid), else -1
   mutable std::vector<RigidState> rigid_;
   bool any_rigid_ = false;
   mutable std::vector<Eigen::Vector3d> torque_;  ///< rhs(): torque on each rigid body [N m]

@@ -24,7 +24,6 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
       free_(model.hip.size(), false),
       fb_(model.hip.size(), 0.0) {
   for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
-  const int nm = static_cast<int>(mechanism.masses.size());
   rotation_ = sys_.rotation_state(model.body);
   extra_ = fp_ = fm_ = ode::Vec::Zero(actuator_force_size());
 }
@@ -174,7 +173,7 @@ void RobotSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) 
 }
 
 void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const {
-  if (rotation_ >= 0) {  // rigid body: central differences of the whole RHS, actuators included
+  if (rotation_ >= 0) {  // rigid body: forward differences of the whole RHS, actuators included
     ode::difference_jacobian(*this, t, y, J);
     return;
   }
