@@ -38,8 +38,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
       "Measure speed versus accuracy (SPEC 7): work-precision of every solver on the\n"
       "pseudo-rigid satellite (tolerances 1e-3..1e-10, internal stiffness 1e4..1e8 N/m)\n"
       "and the reduced legged hopper (steps, tolerances, stride-map fixed point), the\n"
-      "fidelity ladder (impulse, pulse, pseudo-rigid: apexes, stride-map spectral radius,\n"
-      "robustness to seeded disturbances at duty 10-40 %), the quad hopper drop, and the\n"
+      "fidelity ladder (impulse, pulse, rigid body, pseudo-rigid: apexes, stride-map spectral\n"
+      "radius, robustness to seeded disturbances at duty 10-40 %), the quad hopper drop\n"
+      "(four-mass and rigid body), and the\n"
       "peers SUNDIALS CVODE and MuJoCo when they were built. Writes bench.json,\n"
       "work_precision.csv, fidelity_ladder.csv, fidelity_robustness.csv and SVG diagrams.");
   cmd->add_flag("--quick", args.quick, "CI size: fewer points and shorter runs (< 1 min)");
@@ -91,7 +92,8 @@ json to_json(const FidelityPoint& p) {
           {"fit_ok", p.fit_ok},
           {"fit_residual_rel", p.fit_residual_rel},
           {"stable", p.stable},
-          {"fixed_point_vs_impulse", p.fixed_point_vs_impulse}};
+          {"fixed_point_vs_impulse", p.fixed_point_vs_impulse},
+          {"apex_max_vs_four_mass_m", p.apex_max_vs_four_mass}};
 }
 
 std::string fmt(double v) {
@@ -147,7 +149,7 @@ json to_json(const bench::LadderRobustness& lr) {
              "reverse (only_pulse), same trials"},
             {"spectral_radius",
              "undisturbed gait at the duty: stride map (impulse, pulse), fitted estimate "
-             "(pseudo_rigid); 10 = no orbit / no estimate"}}},
+             "(rigid, pseudo_rigid); 10 = no orbit / no estimate"}}},
           {"rungs", rungs}};
 }
 
@@ -229,7 +231,7 @@ std::string ladder_csv(const std::vector<FidelityPoint>& pts) {
   std::string s =
       "model,available,pulse_duration,status,t_end,wall_s,cpu_s,cost_per_sim_s,strides,mean_duty,"
       "mean_apex_m,apex_rms_vs_impulse_m,spectral_radius,spectral_radius_method,"
-      "spectral_radius_fit,fit_ok,stable,fixed_point_vs_impulse,note\n";
+      "spectral_radius_fit,fit_ok,stable,fixed_point_vs_impulse,apex_max_vs_four_mass_m,note\n";
   for (const auto& p : pts) {
     s += p.model + "," + (p.available ? "1" : "0") + "," + fmt(p.pulse_duration) + "," + p.status +
          "," + fmt(p.t_end) + "," + fmt(p.wall_s) + "," + fmt(p.cpu_s) + "," +
@@ -237,7 +239,8 @@ std::string ladder_csv(const std::vector<FidelityPoint>& pts) {
          fmt(p.mean_apex) + "," + fmt(p.apex_rms_vs_impulse) + "," + fmt(p.spectral_radius) + "," +
          p.spectral_radius_method + "," + fmt(p.spectral_radius_fit) + "," +
          (p.fit_ok ? "1" : "0") + "," + (p.stable ? "1" : "0") + "," +
-         fmt(p.fixed_point_vs_impulse) + ",\"" + p.note + "\"\n";
+         fmt(p.fixed_point_vs_impulse) + "," + fmt(p.apex_max_vs_four_mass) + ",\"" + p.note +
+         "\"\n";
   }
   return s;
 }
@@ -442,11 +445,13 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
   // every sample ("energy_error_rel") or at the flight apexes, hop to hop
   // ("energy_error_apex_rel": it leaves out a fixed-step method's bounded transient inside
   // impacts). Returns its CPU time [s] (-1: none) and the run.
-  auto fastest_drop = [&drop](const char* error_field, json* run) {
+  auto fastest_drop = [&drop](const char* error_field, json* run,
+                              const char* body = "four_masses") {
     double best = -1;
     *run = {{"found", false}};
     for (const auto& r : drop) {
       if (r["status"] != "completed" || r[error_field].get<double>() > 1e-3) continue;
+      if (r.value("body", "four_masses") != body) continue;
       if (best < 0 || r["cpu_s"].get<double>() < best) {
         best = r["cpu_s"];
         *run = r;
@@ -459,6 +464,11 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
   const double best_apex = fastest_drop("energy_error_apex_rel", &best_apex_run);
   h["quad_hopper"]["pronk"] = best_run;
   h["quad_hopper"]["pronk_apex_balance"] = best_apex_run;
+  // The same with the body as one rigid body (target: <= 0.5x MuJoCo Euler 1 ms).
+  json best_rigid_run;
+  const double best_rigid = fastest_drop("energy_error_rel", &best_rigid_run, "rigid");
+  h["quad_hopper"]["pronk_rigid"] = best_rigid_run;
+  h["quad_hopper"]["rigid_target_over_mujoco_euler_1ms"] = 0.5;
   h["quad_hopper"]["anchor_mujoco_euler_1ms_issue4_s"] = 0.041;
   if (mujoco.value("available", false)) {
     for (const auto& r : mujoco["runs"]) {
@@ -469,6 +479,11 @@ json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& s
           const double pronk_per_s = best / best_run["t_end"].get<double>();
           h["quad_hopper"]["pronk_over_mujoco_euler_1ms"] =
               pronk_per_s / r["cost_per_sim_s"].get<double>();
+        }
+        if (best_rigid > 0) {
+          h["quad_hopper"]["pronk_rigid_over_mujoco_euler_1ms"] =
+              best_rigid / best_rigid_run["t_end"].get<double>() /
+              r["cost_per_sim_s"].get<double>();
         }
         if (best_apex > 0) {
           h["quad_hopper"]["pronk_apex_balance_over_mujoco_euler_1ms"] =
@@ -644,9 +659,10 @@ int run_bench(const BenchArgs& args) {
     std::map<std::string, Series> by;
     for (const auto& r : drop) {
       if (r["status"] != "completed") continue;
-      const std::string key = r.value("method", "rodas4") == "verlet"
-                                  ? std::string("pronk Verlet")
-                                  : "pronk RODAS4 (" + r["norm"].get<std::string>() + " norm)";
+      std::string key = r.value("method", "rodas4") == "verlet"
+                            ? std::string("pronk Verlet")
+                            : "pronk RODAS4 (" + r["norm"].get<std::string>() + " norm)";
+      if (r.value("body", "four_masses") == "rigid") key += ", rigid body";
       by[key].title = key;
       by[key].xy.push_back({r["cost_per_sim_s"].get<double>(),
                             std::max(1e-12, r["energy_error_rel"].get<double>())});

@@ -397,7 +397,7 @@ void set_fit(FidelityPoint& p, const reduced::StrideFitResult& f) {
   if (!f.ok) p.note += std::string(p.note.empty() ? "" : "; ") + "no stride-map fit: " + f.reason;
 }
 
-/// The full model's settings of every pseudo-rigid run of the ladder (see pseudo_rigid_rung).
+/// The full model's settings of every pseudo-rigid run of the ladder (see full_model_rung).
 constexpr const char* kFullModelSettings = R"({"legs": "force", "internal_stiffness": 1e6})";
 
 FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
@@ -451,9 +451,11 @@ FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
 /// simulated second); skipped with --quick. Stability: the spectral radius of the stride map
 /// fitted to 4 small-perturbation runs of 6 s (the full model has no stride map to evaluate);
 /// verdict: the run completes without a fall and that radius is below 1.
-FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
+/// rigid: the same with the body as one rigid body (the "rigid" rung: same legs and control,
+/// no internal springs).
+FidelityPoint full_model_rung(const scene::Scene& s, const BenchConfig& c, bool rigid) {
   FidelityPoint p;
-  p.model = "pseudo_rigid";
+  p.model = rigid ? "rigid" : "pseudo_rigid";
   p.pulse_duration = s.pulse.duration;
   p.t_end = s.simulation.duration;
   if (c.quick) {
@@ -470,6 +472,7 @@ FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   // (measured); "auto" (1e7 N/m) agrees too but costs 2.5x more.
   sp.pseudo_rigid.internal_stiffness = 1e6;
   sp.pseudo_rigid.internal_auto = false;
+  if (rigid) sp.pseudo_rigid.body = scene::PseudoRigid::BodyKind::kRigid;
   RunOptions opts;
   opts.record_trajectory = false;
   const double c0 = thread_cpu();
@@ -494,8 +497,10 @@ FidelityPoint pseudo_rigid_rung(const scene::Scene& s, const BenchConfig& c) {
   }
   p.mean_duty = nd ? duty / nd : 0.0;
   p.mean_apex = na ? apex / na : 0.0;
-  p.note = "one run; force legs; internal k " + std::to_string(r.monitors.internal_stiffness) +
-           " N/m; spectral radius fitted to 4 perturbed runs of 6 s";
+  p.note = std::string("one run; force legs; ") +
+           (rigid ? "rigid body"
+                  : "internal k " + std::to_string(r.monitors.internal_stiffness) + " N/m") +
+           "; spectral radius fitted to 4 perturbed runs of 6 s";
   set_fit(p, reduced::estimate_stride_map(sp, simulate_records));
   p.spectral_radius = p.spectral_radius_fit;
   p.spectral_radius_method = "fit";
@@ -517,7 +522,12 @@ std::vector<FidelityRung> fidelity_rungs() {
                      sp.model = scene::ModelKind::kPulse;
                      return reduced_rung(sp, c);
                    }});
-  rungs.push_back({"pseudo_rigid", pseudo_rigid_rung});
+  rungs.push_back({"rigid", [](const scene::Scene& s, const BenchConfig& c) {
+                     return full_model_rung(s, c, true);
+                   }});
+  rungs.push_back({"pseudo_rigid", [](const scene::Scene& s, const BenchConfig& c) {
+                     return full_model_rung(s, c, false);
+                   }});
   return rungs;
 }
 
@@ -557,6 +567,21 @@ std::vector<FidelityPoint> fidelity_ladder(const BenchConfig& c) {
       }
       out.push_back(p);
     }
+    // The rigid rung's agreement with the four-mass body at this pulse, apex by apex.
+    FidelityPoint* rigid = nullptr;
+    const FidelityPoint* four = nullptr;
+    for (size_t k = out.size() - (rungs.size() - 1); k < out.size(); ++k) {
+      if (out[k].model == "rigid" && out[k].available) rigid = &out[k];
+      if (out[k].model == "pseudo_rigid" && out[k].available) four = &out[k];
+    }
+    if (rigid != nullptr && four != nullptr) {
+      const size_t n = std::min(rigid->apexes.size(), four->apexes.size());
+      rigid->apex_max_vs_four_mass = 0.0;
+      for (size_t i = 0; i < n; ++i) {
+        rigid->apex_max_vs_four_mass =
+            std::max(rigid->apex_max_vs_four_mass, std::abs(rigid->apexes[i] - four->apexes[i]));
+      }
+    }
   }
   return out;
 }
@@ -569,12 +594,15 @@ namespace {
 /// seed, disturbances, 12 s trials, "stabilized" criterion) at its row 0 (no extra roll: row
 /// seeding keys the trials by row, so trial t here is trial t of that row), on a 1-D duty
 /// axis, with the first `trials` trials and the full model's settings of the ladder.
-optimize::map::MapStudy robustness_study(const BenchConfig& c, const std::string& model,
+optimize::map::MapStudy robustness_study(const BenchConfig& c, const std::string& rung,
                                          const std::vector<double>& duties, long trials) {
+  // The rigid rung is the full model with the rigid body.
+  const bool rigid = rung == "rigid";
+  const std::string model = rigid ? "pseudo_rigid" : rung;
   using nlohmann::json;
   const std::string file = c.studies_dir + "/map_seed_duty.json";
   json doc = io::read_json_file(file);
-  doc["name"] = "fidelity_robustness_" + model;
+  doc["name"] = "fidelity_robustness_" + rung;
   doc["models"] = json::array({model});
   doc["axes"] = json::array({json{{"kind", "duty_cycle"}, {"values", duties}}});
   doc["trials"]["count"] = trials;
@@ -583,13 +611,14 @@ optimize::map::MapStudy robustness_study(const BenchConfig& c, const std::string
   // default, spacing / 8, rounds to just below 0.0125 and would take a fourth.
   doc["boundary"] = {{"resolution", 0.015}};
   doc["scene_overrides"].push_back(std::string("/pseudo_rigid=") + kFullModelSettings);
+  if (rigid) doc["scene_overrides"].push_back("/pseudo_rigid/body=\"rigid\"");
   return optimize::map::parse_map_study(doc, file, c.studies_dir);
 }
 
-RungRobustness robustness_rung(const optimize::map::MapStudy& st) {
+RungRobustness robustness_rung(const optimize::map::MapStudy& st, const std::string& rung) {
   namespace m = optimize::map;
   RungRobustness r;
-  r.model = std::string(scene::to_string(st.primary_model()));
+  r.model = rung;
   const double c0 = thread_cpu();
   std::vector<m::CellResult> cells;
   for (long i = 0; i < st.cells(); ++i) cells.push_back(m::compute_cell(st, i));
@@ -629,7 +658,7 @@ LadderRobustness ladder_robustness(const BenchConfig& c) {
   const long trials = 8;
   LadderRobustness out;
   out.duties = duties;
-  for (const char* model : {"impulse", "pulse", "pseudo_rigid"}) {
+  for (const char* model : {"impulse", "pulse", "rigid", "pseudo_rigid"}) {
     const optimize::map::MapStudy st = robustness_study(c, model, duties, trials);
     out.study = st.file + " (row 0: no extra roll)";
     out.trials = st.trials.count;
@@ -644,7 +673,7 @@ LadderRobustness ladder_robustness(const BenchConfig& c) {
       out.rungs.push_back(r);
       continue;
     }
-    out.rungs.push_back(robustness_rung(st));
+    out.rungs.push_back(robustness_rung(st, model));
   }
   // Disagreements with the pulse rung, trial by trial (the seed's criterion).
   const RungRobustness* pulse = nullptr;
@@ -738,6 +767,11 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
   const double t_end = c.quick ? 2.0 : 10.0;
   const nlohmann::json doc = quad_hopper_mechanism(t_end);
   const pr::Mechanism base = io::parse_mechanism(doc, "<quad_hopper_drop>").mechanism;
+  // The same hopper with its body as one rigid body (the mechanism's "rigid": true).
+  nlohmann::json doc_rigid = doc;
+  doc_rigid["bodies"][0]["rigid"] = true;
+  const pr::Mechanism base_rigid =
+      io::parse_mechanism(doc_rigid, "<quad_hopper_drop_rigid>").mechanism;
   // 10 s of the drop costs seconds per run: each point is run once (c.repeat is
   // not applied here), so the default bench stays within its budget.
   struct Setting {
@@ -745,6 +779,7 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
     double tol;  ///< rtol = atol (RODAS4) or the fixed step h [s] (Verlet)
     pr::ErrorNorm norm;
     double energy_tol = 0.0;  ///< Verlet: simulation.energy_tol (0: every step at h)
+    bool rigid = false;       ///< the body as one rigid body
   };
   std::vector<Setting> settings;
   for (double tol : c.quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6}) {
@@ -762,6 +797,11 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
   // bounded term stays within 1e-4 of the energy scale (8.9 J; 1e-4 of it is 3.9e-4 of the
   // drop energy) at every step.
   settings.push_back({Method::kVerlet, 5e-4, pr::ErrorNorm::kState, 1e-4});
+  // The rigid body: RODAS4 (its Jacobian by differences) and Verlet as above; the feet on
+  // their 1e5 N/m slides still bound Verlet's step.
+  settings.push_back({Method::kRodas4, 1e-5, pr::ErrorNorm::kState, 0.0, true});
+  settings.push_back({Method::kVerlet, 5e-4, pr::ErrorNorm::kState, 0.0, true});
+  settings.push_back({Method::kVerlet, 5e-4, pr::ErrorNorm::kState, 1e-4, true});
   // The reference for the apex heights: RODAS4 at tol 1e-8 (not timed).
   auto apex_heights = [](const pr::Mechanism& m, const pr::RunSummary& r,
                          std::vector<size_t>* index) {
@@ -781,20 +821,24 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
     }
     return out;
   };
-  std::vector<double> z_ref;
-  {
-    pr::Mechanism m = base;
+  // (The rigid rows against the rigid body's own reference: at 1e5 N/m the four-mass body
+  // flexes by ~0.3 %, and the two differ by ~9 % of the drop in apex height.)
+  std::vector<double> z_ref, z_ref_rigid;
+  for (const bool rigid : {false, true}) {
+    pr::Mechanism m = rigid ? base_rigid : base;
     m.simulation.solver.rtol = m.simulation.solver.atol = 1e-8;
-    m.simulation.error_norm = pr::ErrorNorm::kBody;
+    if (!rigid) m.simulation.error_norm = pr::ErrorNorm::kBody;
     const pr::RunSummary r = pr::simulate(m);
-    if (r.status == pr::RunStatus::kCompleted) z_ref = apex_heights(m, r, nullptr);
+    if (r.status == pr::RunStatus::kCompleted) {
+      (rigid ? z_ref_rigid : z_ref) = apex_heights(m, r, nullptr);
+    }
   }
   nlohmann::json out = nlohmann::json::array();
   for (const Setting& setting : settings) {
     {
       const double tol = setting.tol;
       const pr::ErrorNorm norm = setting.norm;
-      pr::Mechanism m = base;
+      pr::Mechanism m = setting.rigid ? base_rigid : base;
       m.simulation.solver.method = setting.method;
       m.simulation.solver.rtol = m.simulation.solver.atol = tol;
       if (setting.method == Method::kVerlet) m.simulation.solver.h_fixed = tol;
@@ -818,8 +862,9 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
         apex_balance = std::max(apex_balance, std::abs(r.energies[i].total() + r.dissipated[i] -
                                                        r.actuator_work[i] - balance0));
       }
-      for (size_t i = 0; i < a.size() && i < z_ref.size(); ++i) {
-        apex_vs_ref = std::max(apex_vs_ref, std::abs(a[i] - z_ref[i]) / drop);
+      const std::vector<double>& ref = setting.rigid ? z_ref_rigid : z_ref;
+      for (size_t i = 0; i < a.size() && i < ref.size(); ++i) {
+        apex_vs_ref = std::max(apex_vs_ref, std::abs(a[i] - ref[i]) / drop);
       }
       double apex_err = 0;
       for (double h : a) apex_err = std::max(apex_err, std::abs(h - z0) / drop);
@@ -829,6 +874,7 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
       const double drop_energy = m.total_mass() * 9.81 * drop;
       out.push_back(
           {{"method", std::string(ode::to_string(setting.method))},
+           {"body", setting.rigid ? "rigid" : "four_masses"},
            {"tol", setting.method == Method::kVerlet ? 0.0 : tol},
            {"h", setting.method == Method::kVerlet ? tol : 0.0},
            {"energy_tol", setting.energy_tol},
@@ -846,7 +892,7 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
            {"energy_drift_rel", r.energy_drift / r.energy_scale},
            {"energy_error_rel", r.energy_drift / drop_energy},
            {"energy_error_apex_rel", apex_balance / drop_energy},
-           {"apex_height_vs_reference_rel", z_ref.empty() ? -1.0 : apex_vs_ref},
+           {"apex_height_vs_reference_rel", ref.empty() ? -1.0 : apex_vs_ref},
            {"bounces", a.size()},
            {"apex_heights_m", a},
            {"apex_height_error_rel", apex_err},

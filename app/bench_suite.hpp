@@ -57,7 +57,7 @@ struct OrderFit {
 
 /// One model rung of the fidelity ladder at one duty-cycle setting.
 struct FidelityPoint {
-  std::string model;            ///< impulse, pulse, pseudo_rigid
+  std::string model;            ///< impulse, pulse, rigid, pseudo_rigid (four-mass body)
   bool available = true;        ///< false: the rung exists but cannot run yet (see note)
   std::string note;             ///< why unavailable, or remarks
   double pulse_duration = 0.0;  ///< stance pulse T [s] (pulse model); 0 for impulse
@@ -82,7 +82,10 @@ struct FidelityPoint {
   double fit_residual_rel = 0.0;  ///< RMS fit residual / RMS of the next states [-]
   bool stable = false;  ///< spectral radius < 1 with an orbit found (pseudo_rigid: and no fall)
   double fixed_point_vs_impulse = 0.0;  ///< |s* - s*_impulse|_inf
-  std::vector<double> apexes;           ///< apex heights of strides 2.. [m] (not written out)
+  /// rigid rung: max |apex_k - apex_k(pseudo_rigid)| over the strides both have, at the same
+  /// pulse [m] (its agreement with the four-mass body); -1 elsewhere.
+  double apex_max_vs_four_mass = -1.0;
+  std::vector<double> apexes;  ///< apex heights of strides 2.. [m] (not written out)
 };
 
 /// One rung at one duty cycle: a cell of the ladder's robustness map (the seeded

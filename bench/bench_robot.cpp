@@ -14,11 +14,14 @@
 //  - running (issue 18): studies/scenes/pr_running.json, 10 s simulated, on RODAS4 (the
 //    scene's tolerances) and on Verlet (h_fixed 1.5e-4 s): process CPU
 //    time, median of `repeats` runs each (interleaved), the worst sampled energy balance
-//    relative to the energy scale, and the RODAS4 / Verlet CPU ratio.
+//    relative to the energy scale, and the RODAS4 / Verlet CPU ratio; the same with the body
+//    as one rigid body ("pseudo_rigid": {"body": "rigid"}), its CPU relative to the four-mass
+//    body's and its strides against them (largest apex and touchdown-attitude differences).
 // Usage: bench_robot [repeats [groups]]; groups is "all" (default) or "running".
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -26,6 +29,7 @@
 
 #include "sim/io/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
+#include "sim/robot/fidelity.hpp"
 #include "sim/robot/robot_simulator.hpp"
 #include "sim/simulate.hpp"
 
@@ -111,7 +115,16 @@ void running(int repeats, bool* first) {
   };
   std::vector<Setting> settings = {
       {"rodas4", {R"(/pseudo_rigid/solver={"method":"rodas4"})"}, {}, {}},
-      {"verlet", {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})"}, {}, {}}};
+      {"verlet", {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})"}, {}, {}},
+      {"rodas4_rigid",
+       {R"(/pseudo_rigid/solver={"method":"rodas4"})", R"(/pseudo_rigid/body="rigid")"},
+       {},
+       {}},
+      {"verlet_rigid",
+       {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})",
+        R"(/pseudo_rigid/body="rigid")"},
+       {},
+       {}}};
   for (int k = 0; k < repeats; ++k) {
     for (Setting& st : settings) {
       std::vector<std::string> set = st.set;
@@ -147,6 +160,19 @@ void running(int repeats, bool* first) {
   }
   std::printf(",\n    {\"group\": \"running\", \"rodas4_over_verlet_cpu\": %.4g}",
               median(settings[0].cpu) / median(settings[1].cpu));
+  for (int k = 0; k < 2; ++k) {
+    const robot::FidelityDiscrepancy d =
+        robot::compare_strides(settings[k].last.run, settings[k + 2].last.run);
+    std::printf(
+        ",\n    {\"group\": \"running\", \"method\": \"%s\", "
+        "\"rigid_over_four_mass_cpu\": %.4g, \"rigid_cpu_per_10_s\": %.4g, "
+        "\"four_mass_cpu_per_10_s\": %.4g, \"strides_compared\": %ld, "
+        "\"apex_max_diff_m\": %.3g, \"touchdown_attitude_max_diff_deg\": %.3g}",
+        settings[k].name, median(settings[k + 2].cpu) / median(settings[k].cpu),
+        median(settings[k + 2].cpu) * 10.0 / settings[k + 2].last.run.t_end,
+        median(settings[k].cpu) * 10.0 / settings[k].last.run.t_end, d.strides, d.max_apex,
+        d.max_attitude * 180.0 / M_PI);
+  }
   std::fflush(stdout);
 }
 

@@ -304,6 +304,7 @@ class Loader {
       case pr::NodeRef::Kind::kGhost: {
         const pr::GhostPoint& g = m.ghost_points[n.index];
         const pr::Body& b = m.bodies[g.body];
+        if (b.rigid) return m.masses[b.first_mass].position + b.attitude0 * g.local;
         Eigen::Vector3d x = Eigen::Vector3d::Zero();
         for (int i = 0; i < 4; ++i) x += g.weights[i] * m.masses[b.first_mass + i].position;
         return x;
@@ -351,11 +352,16 @@ class Loader {
     }
     spec.internal_stiffness = e.positive_or("internal_stiffness", set.internal_stiffness);
     spec.internal_damping = e.number_or("internal_damping", 0.0, 0.0);
+    // One rigid body instead of four masses (rigid_body.hpp): the internal springs are unused.
+    spec.rigid = e.boolean_or("rigid", false);
     std::string err;
     const int b = pr::add_body(*m, spec, &err);
     if (b < 0) throw e.error("inertia", "a valid inertia tensor", err);
     bodies_[spec.name] = b;
-    for (int i = 0; i < 4; ++i) {
+    if (spec.rigid && e.has("dummy_masses")) {
+      throw e.error("dummy_masses", "no dummy masses on a rigid body", "dummy masses");
+    }
+    for (int i = 0; i < (spec.rigid ? 0 : 4); ++i) {
       define(e, spec.name + "." + std::to_string(i),
              pr::NodeRef{pr::NodeRef::Kind::kMass, m->bodies[b].first_mass + i});
     }

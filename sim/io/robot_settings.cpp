@@ -30,6 +30,15 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   const std::string hips = r.choice_or("hips", "ghost_points", {"ghost_points", "dummy_masses"});
   p.hips =
       hips == "dummy_masses" ? scene::PseudoRigid::Hips::kDummy : scene::PseudoRigid::Hips::kGhost;
+  const std::string body = r.choice_or("body", "four_masses", {"four_masses", "rigid"});
+  p.body = body == "rigid" ? scene::PseudoRigid::BodyKind::kRigid
+                           : scene::PseudoRigid::BodyKind::kFourMasses;
+  if (p.body == scene::PseudoRigid::BodyKind::kRigid &&
+      p.hips == scene::PseudoRigid::Hips::kDummy) {
+    throw r.error("hips",
+                  "\"ghost_points\" with \"body\": \"rigid\" (a rigid body has no dummy masses)",
+                  "\"dummy_masses\"");
+  }
   p.dummy_ratio = r.number_or("dummy_ratio", p.dummy_ratio, 1e-6, 1.0);
   const std::string legs = r.choice_or("legs", "spring", {"spring", "force"});
   p.legs = legs == "force" ? scene::PseudoRigid::Legs::kForce : scene::PseudoRigid::Legs::kSpring;
@@ -103,6 +112,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
 json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
   const auto& so = p.solver;
   json j = {{"hips", p.hips == scene::PseudoRigid::Hips::kDummy ? "dummy_masses" : "ghost_points"},
+            {"body", p.body == scene::PseudoRigid::BodyKind::kRigid ? "rigid" : "four_masses"},
             {"dummy_ratio", p.dummy_ratio},
             {"legs", p.legs == scene::PseudoRigid::Legs::kForce ? "force" : "spring"},
             {"internal_damping", p.internal_damping},
@@ -167,6 +177,17 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       }
       if (s.pseudo_rigid.hips == scene::PseudoRigid::Hips::kGhost) {
         out.push_back("/pseudo_rigid/dummy_ratio");
+      }
+      if (s.pseudo_rigid.body == scene::PseudoRigid::BodyKind::kRigid) {
+        // No internal springs: internal_stiffness and internal_damping hold only the leg
+        // slides (none with force legs); the strain budget bounds nothing (no strain) unless
+        // "auto" sizes the slides with it; the rigid states are body-level already.
+        out.push_back("/pseudo_rigid/error_norm");
+        if (!s.pseudo_rigid.internal_auto) out.push_back("/pseudo_rigid/strain_budget");
+        if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
+          out.push_back("/pseudo_rigid/internal_stiffness");
+          out.push_back("/pseudo_rigid/internal_damping");
+        }
       }
       if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
         out.push_back("/pseudo_rigid/solver/energy_tol");  // verlet's energy budget

@@ -56,6 +56,12 @@ class OdeSystem {
   /// Cartesian components) that belong together under rotations: the symplectic stepper's
   /// held-force projection acts per block, so it does not depend on the frame.
   virtual int momentum_block() const { return 1; }
+  /// Optional, with the mechanical split: a drift of its own. Systems whose position rate
+  /// also depends on the positions (a rigid body's attitude quaternion turns with
+  /// omega = R I^-1 R^T L) advance the position entries of y over h [s] at fixed momenta by
+  /// a symplectic flow of their kinetic energy; without it the stepper drifts q += h G(p).
+  virtual bool has_drift() const { return false; }
+  virtual void drift(double /*h*/, Vec& /*y*/) const {}
 
   /// Optional dissipation split for the symplectic stepper (needs the mechanical split): the
   /// velocity-dependent dissipative forces (dampers, friction, drag) leave the kicks and act

@@ -89,6 +89,7 @@ class VerletStepper final : public Stepper {
     }
     sys.momentum_mask(mask_);
     split_ = sys.has_dissipation_split();
+    drift_ = sys.has_drift();
     block_ = std::max(1, sys.momentum_block());
     const bool has_metric = sys.kinetic_energy(y) >= 0.0;
     if (budget_ > 0.0 && !has_metric) {
@@ -254,9 +255,13 @@ class VerletStepper final : public Stepper {
     // the momenta, so the positions drift with damped momenta.
     y_new_.noalias() = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
     if (split_) dissipated += sys.dissipate(t_, 0.5 * h, y_, y_new_);
-    // Drift: q_new = q + h G(p_half).
-    sys.position_rate(y_new_, f_new_);
-    y_new_.noalias() += h * q_mask_.cwiseProduct(f_new_);
+    // Drift: q_new = q + h G(p_half) (or the system's own flow, OdeSystem::drift).
+    if (drift_) {
+      sys.drift(h, y_new_);
+    } else {
+      sys.position_rate(y_new_, f_new_);
+      y_new_.noalias() += h * q_mask_.cwiseProduct(f_new_);
+    }
     // Closing kick with F at the new positions and the predicted momentum p*.
     p_half_ = y_new_;
     y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(f_);
@@ -385,6 +390,7 @@ class VerletStepper final : public Stepper {
   Vec mask_;                       ///< 1 on momentum states, 0 on positions
   Vec q_mask_;                     ///< 1 - mask_
   bool split_ = false;             ///< the system's dissipation split is applied
+  bool drift_ = false;             ///< the system drifts its positions itself
   int block_ = 1;                  ///< momentum entries per rotation block
   bool metric_ = false;            ///< T_net is tracked (a metric, and a split or a budget)
   double k_net_ = 0.0;             ///< kinetic energy of the held force at t_ [N^2/kg]

@@ -29,6 +29,9 @@ struct BodySpec {
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< initial angular velocity, world [rad/s]
   double internal_stiffness = 1e6;                  ///< internal springs [N/m]
   double internal_damping = 0.0;                    ///< internal dampers [N s/m]
+  /// One rigid body (Newton-Euler, unit quaternion) instead of four masses and six springs:
+  /// the same mass and inertia tensor, no internal springs (rigid_body.hpp).
+  bool rigid = false;
 };
 
 /// A body as the model holds it.
@@ -41,6 +44,16 @@ struct Body {
   Eigen::Matrix3d geometric_inverse;     ///< (sum |r|^2 1 - r r^T)^-1 of `local` [1/m^2]
   double size = 1.0;                     ///< largest |local| [m]
   double min_edge = 1.0;                 ///< shortest internal spring [m]
+  /// Rigid body (BodySpec::rigid): first_mass is ONE mass (the whole body at its CoM, its
+  /// translation), and the body owns 7 more states after all masses' (rigid_body.hpp): the
+  /// attitude quaternion (w, x, y, z) and the world angular momentum [N m s]. `local` is
+  /// still the four-mass placement (size, min_edge and "auto" stiffness use it).
+  bool rigid = false;
+  Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Identity();  ///< body frame [1/(kg m^2)]
+  Eigen::Quaterniond attitude0 = Eigen::Quaterniond::Identity();  ///< rigid: initial attitude
+  Eigen::Vector3d angular_momentum0 = Eigen::Vector3d::Zero();    ///< rigid: initial, world
+  Eigen::Vector3d principal_moments = Eigen::Vector3d::Ones();    ///< rigid [kg m^2]
+  Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();   ///< rigid: columns, body frame
 };
 
 /// Places four masses for the tensor. Returns false with a reason (naming the

@@ -4,6 +4,8 @@
 
 #include <Eigen/LU>
 
+#include "sim/pseudorigid/rigid_body.hpp"
+
 namespace pronk::pseudorigid {
 
 NodeRef add_mass(Mechanism& m, const std::string& name, double mass,
@@ -32,6 +34,28 @@ int add_body(Mechanism& m, const BodySpec& spec, std::string* error) {
   }
   b.geometric_inverse = g.inverse();
   const int index = static_cast<int>(m.bodies.size());
+  b.min_edge = 1e300;
+  for (int i = 0; i < 4; ++i) {
+    for (int k = i + 1; k < 4; ++k)
+      b.min_edge = std::min(b.min_edge, (b.local[i] - b.local[k]).norm());
+  }
+  if (spec.rigid) {
+    // One mass for the translation; the rotation's states follow all masses' (model.hpp).
+    b.rigid = true;
+    b.inverse_inertia = spec.inertia.inverse();
+    principal_axes(spec.inertia, &b.principal_moments, &b.principal_axes);
+    b.attitude0 = Eigen::Quaterniond(spec.attitude).normalized();
+    b.angular_momentum0 = spec.attitude * spec.inertia * spec.attitude.transpose() * spec.omega;
+    Mass ms;
+    ms.name = spec.name;
+    ms.mass = spec.mass;
+    ms.position = spec.com;
+    ms.velocity = spec.velocity;
+    ms.body = index;
+    m.masses.push_back(ms);
+    m.bodies.push_back(b);
+    return index;
+  }
   for (int i = 0; i < 4; ++i) {
     const Eigen::Vector3d arm = spec.attitude * b.local[i];
     Mass ms;
@@ -42,7 +66,6 @@ int add_body(Mechanism& m, const BodySpec& spec, std::string* error) {
     ms.body = index;
     m.masses.push_back(ms);
   }
-  b.min_edge = 1e300;
   for (int i = 0; i < 4; ++i) {
     for (int k = i + 1; k < 4; ++k) {
       Connection c;
@@ -53,7 +76,6 @@ int add_body(Mechanism& m, const BodySpec& spec, std::string* error) {
       c.stiffness = spec.internal_stiffness;
       c.damping = spec.internal_damping;
       c.rest_length = (b.local[i] - b.local[k]).norm();
-      b.min_edge = std::min(b.min_edge, c.rest_length);
       m.connections.push_back(c);
     }
   }

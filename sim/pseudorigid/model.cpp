@@ -48,11 +48,31 @@ double Mechanism::total_mass() const {
   return s;
 }
 
+int Mechanism::rigid_bodies() const {
+  int n = 0;
+  for (const Body& b : bodies) n += b.rigid ? 1 : 0;
+  return n;
+}
+
+int Mechanism::rotation_state(int b) const {
+  if (!bodies[static_cast<size_t>(b)].rigid) return -1;
+  int k = 0;
+  for (int i = 0; i < b; ++i) k += bodies[static_cast<size_t>(i)].rigid ? 1 : 0;
+  return 6 * static_cast<int>(masses.size()) + 7 * k;
+}
+
 Eigen::VectorXd Mechanism::initial_state() const {
   Eigen::VectorXd y(dimension());
   for (size_t j = 0; j < masses.size(); ++j) {
     y.segment<3>(6 * j) = masses[j].position;
     y.segment<3>(6 * j + 3) = masses[j].mass * masses[j].velocity;
+  }
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    const int r = rotation_state(b);
+    if (r < 0) continue;
+    const Eigen::Quaterniond& q = bodies[static_cast<size_t>(b)].attitude0;
+    y.segment<4>(r) << q.w(), q.x(), q.y(), q.z();
+    y.segment<3>(r + 4) = bodies[static_cast<size_t>(b)].angular_momentum0;
   }
   return y;
 }

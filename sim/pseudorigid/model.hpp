@@ -7,8 +7,9 @@
 // simulator.hpp).
 //
 // State layout: mass j owns y[6j .. 6j+2] = position [m] and
-// y[6j+3 .. 6j+5] = momentum [N s]. Ghost points, reference points, anchors and
-// grounded surfaces contribute no states.
+// y[6j+3 .. 6j+5] = momentum [N s]. After all masses, each rigid body (Body::rigid) owns
+// 7 states: its attitude quaternion (w, x, y, z) and world angular momentum [N m s]. Ghost
+// points, reference points, anchors and grounded surfaces contribute no states.
 #pragma once
 
 #include <string>
@@ -104,7 +105,12 @@ struct Mechanism {
   std::vector<ImpulseActuator> impulse_actuators;
   SimulationOptions simulation;
 
-  int dimension() const { return 6 * static_cast<int>(masses.size()); }
+  /// 6 per mass, then 7 per rigid body (quaternion, angular momentum; rigid_body.hpp).
+  int dimension() const { return 6 * static_cast<int>(masses.size()) + 7 * rigid_bodies(); }
+  int rigid_bodies() const;
+  /// Index in y of rigid body b's quaternion (its angular momentum follows at +4); -1 for
+  /// a four-mass body.
+  int rotation_state(int b) const;
   double total_mass() const;
   /// The initial state vector.
   Eigen::VectorXd initial_state() const;

@@ -62,6 +62,13 @@ class SolverView final : public ode::OdeSystem {
       scale_.segment<3>(6 * j).setOnes();
       scale_.segment<3>(6 * j + 3).setConstant(scale);
     }
+    for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b) {
+      // A rigid body: its quaternion as it is, its angular momentum as an angular velocity.
+      const int r = m.rotation_state(b);
+      if (r < 0) continue;
+      scale_.segment<4>(r).setOnes();
+      scale_.segment<3>(r + 4).setConstant(m.bodies[b].principal_moments.minCoeff());
+    }
   }
   int dimension() const override { return sys_.dimension(); }
   void rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override { sys_.rhs(t, y, dydt); }
@@ -78,6 +85,8 @@ class SolverView final : public ode::OdeSystem {
   double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
   int momentum_block() const override { return sys_.momentum_block(); }
   bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
+  bool has_drift() const override { return sys_.has_drift(); }
+  void drift(double h, ode::Vec& y) const override { sys_.drift(h, y); }
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.conservative_rhs(t, y, dydt);
   }

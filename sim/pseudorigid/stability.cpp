@@ -15,7 +15,16 @@ void weights(const Mechanism& m, const NodeRef& n, double sign,
     out.emplace_back(n.index, sign);
   } else if (n.kind == NodeRef::Kind::kGhost) {
     const GhostPoint& g = m.ghost_points[static_cast<size_t>(n.index)];
-    const int first = m.bodies[static_cast<size_t>(g.body)].first_mass;
+    const Body& b = m.bodies[static_cast<size_t>(g.body)];
+    const int first = b.first_mass;
+    if (b.rigid) {
+      // A rigid body's point moves with its CoM mass M and its rotation: its inverse effective
+      // mass is at most 1/M + |r|^2 / I_min = w^2 / M, w = sqrt(1 + M |r|^2 / I_min).
+      const double w =
+          std::sqrt(1.0 + b.mass * g.local.squaredNorm() / b.principal_moments.minCoeff());
+      out.emplace_back(first, sign * w);
+      return;
+    }
     for (int k = 0; k < 4; ++k) out.emplace_back(first + k, sign * g.weights[k]);
   }
 }

@@ -25,11 +25,17 @@ StiffnessChoice choose_stiffness(Mechanism& m, const StiffnessSettings& s) {
     for (size_t b = 0; b < m.bodies.size(); ++b) {
       const Body& body = m.bodies[b];
       std::array<Eigen::Vector3d, 4> x, v;
-      for (int i = 0; i < 4; ++i) {
-        x[i] = m.masses[body.first_mass + i].position;
-        v[i] = m.masses[body.first_mass + i].velocity;
+      double w = 0.0;  // initial angular speed [rad/s]
+      if (body.rigid) {
+        const Eigen::Matrix3d r = body.attitude0.toRotationMatrix();
+        w = (r * body.inverse_inertia * r.transpose() * body.angular_momentum0).norm();
+      } else {
+        for (int i = 0; i < 4; ++i) {
+          x[i] = m.masses[body.first_mass + i].position;
+          v[i] = m.masses[body.first_mass + i].velocity;
+        }
+        w = fit_angular_velocity(x, v).norm();
       }
-      const double w = fit_angular_velocity(x, v).norm();
       const double f_peak =
           body.mass * (s.load_factor * g + w * w * body.size) + applied + 1e-9 * body.mass;
       const double k = f_peak / (s.strain_budget * body.min_edge);

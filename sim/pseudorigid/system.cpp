@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/ode/difference_jacobian.hpp"
+#include "sim/pseudorigid/rigid_body.hpp"
+
 namespace pronk::pseudorigid {
 namespace {
 
@@ -21,8 +24,14 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
       fit_valid_(m.bodies.size(), false),
       frames_(m.bodies.size()),
       dframes_(m.bodies.size()),
-      force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))) {
+      force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))),
+      rigid_(m.bodies.size()),
+      torque_(m.bodies.size(), Vector3d::Zero()) {
   for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
+  for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b) {
+    rot_.push_back(m.rotation_state(b));
+    any_rigid_ = any_rigid_ || rot_.back() >= 0;
+  }
   bool attached = false;
   for (const Surface& s : m.surfaces) attached = attached || s.body >= 0;
   has_attached_surfaces_ = attached;
@@ -50,12 +59,19 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
     }
   }
   rhs_needs_frames_ =
-      attached || !m.body_forces.empty() || !m.impulse_actuators.empty() ||
+      any_rigid_ || attached || !m.body_forces.empty() || !m.impulse_actuators.empty() ||
       (m.simulation.ghost_transfer == GhostTransfer::kMinNorm && !m.ghost_points.empty());
 }
 
 const BodyFrame& MechanismSystem::fitted_frame(int b, const ode::Vec& y) const {
   const Body& body = m_.bodies[b];
+  if (body.rigid) {
+    BodyFrame& f = fit_frame_[b];
+    f.com = seg(y, 6 * body.first_mass);
+    f.rotation = rigid_state(b, y).rotation;
+    f.stretch.setIdentity();
+    return f;
+  }
   std::array<Vector3d, 4> x;
   for (int i = 0; i < 4; ++i) x[i] = seg(y, 6 * (body.first_mass + i));
   // Exact comparison: the same positions give the same fit, bit for bit.
@@ -70,13 +86,19 @@ const BodyFrame& MechanismSystem::fitted_frame(int b, const ode::Vec& y) const {
 void MechanismSystem::update_frames(const ode::Vec& y, bool derivatives) const {
   for (size_t b = 0; b < m_.bodies.size(); ++b) {
     frames_[b] = fitted_frame(static_cast<int>(b), y);
-    if (derivatives) dframes_[b] = attitude_derivative(frames_[b], m_.bodies[b].local);
+    if (derivatives && !m_.bodies[b].rigid) {
+      dframes_[b] = attitude_derivative(frames_[b], m_.bodies[b].local);
+    }
   }
 }
 
 const std::vector<BodyFrame>& MechanismSystem::frames(const ode::Vec& y) const {
   update_frames(y, false);
   for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    if (m_.bodies[b].rigid) {
+      frames_[b].com_velocity = seg(y, 6 * m_.bodies[b].first_mass + 3) / m_.bodies[b].mass;
+      continue;
+    }
     Vector3d v = Vector3d::Zero();
     for (int i = 0; i < 4; ++i) v += 0.25 * seg(y, 6 * (m_.bodies[b].first_mass + i) + 3);
     frames_[b].com_velocity = v / (0.25 * m_.bodies[b].mass);  // equal masses m/4
@@ -91,6 +113,7 @@ Vector3d MechanismSystem::node_position(const NodeRef& n, const ode::Vec& y) con
     case NodeRef::Kind::kGhost: {
       const GhostPoint& g = m_.ghost_points[n.index];
       const int f = m_.bodies[g.body].first_mass;
+      if (rot_[g.body] >= 0) return seg(y, 6 * f) + rigid_state(g.body, y).rotation * g.local;
       Vector3d x = Vector3d::Zero();
       for (int i = 0; i < 4; ++i) x += g.weights[i] * seg(y, 6 * (f + i));
       return x;
@@ -108,6 +131,10 @@ Vector3d MechanismSystem::node_velocity(const NodeRef& n, const ode::Vec& y) con
     case NodeRef::Kind::kGhost: {
       const GhostPoint& g = m_.ghost_points[n.index];
       const int f = m_.bodies[g.body].first_mass;
+      if (rot_[g.body] >= 0) {
+        const RigidState& k = rigid_state(g.body, y);
+        return seg(y, 6 * f + 3) * inv_mass_[f] + k.omega.cross(k.rotation * g.local);
+      }
       Vector3d v = Vector3d::Zero();
       for (int i = 0; i < 4; ++i) v += g.weights[i] * inv_mass_[f + i] * seg(y, 6 * (f + i) + 3);
       return v;
@@ -126,6 +153,7 @@ Vector3d MechanismSystem::reference_position(int i, const ode::Vec& y) const {
 
 Vector3d MechanismSystem::body_omega(int b, const ode::Vec& y) const {
   const Body& body = m_.bodies[b];
+  if (body.rigid) return rigid_state(b, y).omega;
   std::array<Vector3d, 4> x, v;
   for (int k = 0; k < 4; ++k) {
     x[k] = seg(y, 6 * (body.first_mass + k));
@@ -159,6 +187,12 @@ int MechanismSystem::transfers(const NodeRef& n, std::array<Transfer, 4>& out) c
 void MechanismSystem::apply(const NodeRef& n, const Vector3d& f) const {
   if (n.kind == NodeRef::Kind::kMass) {
     force_.segment<3>(3 * n.index) += f;
+    return;
+  }
+  if (rigid_node(n)) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    force_.segment<3>(3 * m_.bodies[g.body].first_mass) += f;
+    torque_[g.body] += (frames_[g.body].rotation * g.local).cross(f);
     return;
   }
   if (n.kind == NodeRef::Kind::kGhost &&
@@ -366,6 +400,7 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   if (rhs_needs_frames_) update_frames(y, has_attached_surfaces_);
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
+  if (any_rigid_) std::fill(torque_.begin(), torque_.end(), Vector3d::Zero());
   bool zero_length = false;
   for (const Connection& c : m_.connections) {
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
@@ -383,6 +418,10 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
       if (s.body < 0) {
         const SurfaceEval e = eval_surface(s, n, y);
         if (e.active) apply(n, e.force);
+        continue;
+      }
+      if (rot_[s.body] >= 0) {
+        rigid_surface_forces(s, n, y);
         continue;
       }
       attached_.clear();  // (an inactive plane adds nothing)
@@ -403,6 +442,84 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
     dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
     dydt.segment<3>(6 * j + 3) = force_.segment<3>(3 * j);
   }
+  if (any_rigid_) rigid_rates(y, dydt);
+}
+
+void MechanismSystem::rigid_rates(const ode::Vec& y, ode::Vec& dydt) const {
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const int r = rot_[b];
+    if (r < 0) continue;
+    rigid_quaternion_rate(y, r, rigid_state(static_cast<int>(b), y).omega, dydt);
+    dydt.segment<3>(r + 4) = torque_[b];
+  }
+}
+
+const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode::Vec& y) const {
+  RigidState& k = rigid_[static_cast<size_t>(b)];
+  const int r = rot_[static_cast<size_t>(b)];
+  if (y.segment<7>(r) != k.key) {
+    k.key = y.segment<7>(r);
+    k.rotation = rigid_rotation(y, r);
+    k.omega = rigid_omega(m_.bodies[static_cast<size_t>(b)], k.rotation, seg(y, r + 4));
+  }
+  return k;
+}
+
+bool MechanismSystem::rigid_node(const NodeRef& n) const {
+  return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
+}
+
+void MechanismSystem::rigid_surface_forces(const Surface& s, const NodeRef& n,
+                                           const ode::Vec& y) const {
+  const Matrix3d& rot = frames_[s.body].rotation;
+  const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
+  const Vector3d dir = rot * s.direction;
+  const Vector3d r = node_position(n, y) - node_position(g, y);
+  const Vector3d v =
+      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
+  Matrix3d proj = Matrix3d::Identity();
+  Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the turning direction [N m]
+  switch (s.type) {
+    case SurfaceType::kPlane:
+      if (dir.dot(r) >= 0.0 && !s.bilateral) return;
+      proj = dir * dir.transpose();
+      tau = -s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kLine:
+      proj = Matrix3d::Identity() - dir * dir.transpose();
+      tau = s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kPoint:
+      break;
+  }
+  const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
+  apply(n, force);
+  apply(g, -force);
+  torque_[s.body] += tau;
+}
+
+void MechanismSystem::add_node_force(const NodeRef& n, const Vector3d& f, const ode::Vec& y,
+                                     ode::Vec& dydt) const {
+  if (n.kind == NodeRef::Kind::kMass) {
+    dydt.segment<3>(6 * n.index + 3) += f;
+  } else if (rigid_node(n)) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    const int first = m_.bodies[g.body].first_mass;
+    dydt.segment<3>(6 * first + 3) += f;
+    dydt.segment<3>(rot_[g.body] + 4) += (node_position(n, y) - seg(y, 6 * first)).cross(f);
+  } else if (n.kind == NodeRef::Kind::kGhost) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    const int first = m_.bodies[g.body].first_mass;
+    for (int i = 0; i < 4; ++i) dydt.segment<3>(6 * (first + i) + 3) += g.weights[i] * f;
+  }
+}
+
+void MechanismSystem::drift(double h, ode::Vec& y) const {
+  const int nm = static_cast<int>(m_.masses.size());
+  for (int j = 0; j < nm; ++j) y.segment<3>(6 * j) += h * (seg(y, 6 * j + 3) * inv_mass_[j]);
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    if (rot_[b] >= 0) rigid_rotation_drift(m_.bodies[b], h, y, rot_[b]);
+  }
 }
 
 void MechanismSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
@@ -418,6 +535,7 @@ double MechanismSystem::inverse_mass(const NodeRef& n) const {
     case NodeRef::Kind::kGhost: {
       const GhostPoint& g = m_.ghost_points[n.index];
       const int f = m_.bodies[g.body].first_mass;
+      if (rot_[g.body] >= 0) return inv_mass_[f];  // translation (inverse_mass_along: rotation)
       double w = 0.0;
       for (int i = 0; i < 4; ++i) w += g.weights[i] * g.weights[i] * inv_mass_[f + i];
       return w;
@@ -428,9 +546,25 @@ double MechanismSystem::inverse_mass(const NodeRef& n) const {
   return 0.0;
 }
 
+double MechanismSystem::inverse_mass_along(const NodeRef& n, const ode::Vec& y,
+                                           const Vector3d& d) const {
+  if (!rigid_node(n)) return inverse_mass(n);
+  const GhostPoint& g = m_.ghost_points[n.index];
+  const Body& b = m_.bodies[g.body];
+  const Matrix3d& r = rigid_state(g.body, y).rotation;
+  const Vector3d a = (r * g.local).cross(d);
+  return inv_mass_[b.first_mass] * d.squaredNorm() + a.dot(rigid_inverse_inertia(b, r) * a);
+}
+
 void MechanismSystem::add_impulse(const NodeRef& n, const Vector3d& j, ode::Vec& y) const {
   if (n.kind == NodeRef::Kind::kMass) {
     y.segment<3>(6 * n.index + 3) += j;
+  } else if (rigid_node(n)) {
+    const GhostPoint& g = m_.ghost_points[n.index];
+    const int first = m_.bodies[g.body].first_mass;
+    const Vector3d arm = rigid_state(g.body, y).rotation * g.local;
+    y.segment<3>(6 * first + 3) += j;
+    y.segment<3>(rot_[g.body] + 4) += arm.cross(j);
   } else if (n.kind == NodeRef::Kind::kGhost) {
     const GhostPoint& g = m_.ghost_points[n.index];
     const int f = m_.bodies[g.body].first_mass;
@@ -439,6 +573,11 @@ void MechanismSystem::add_impulse(const NodeRef& n, const Vector3d& j, ode::Vec&
 }
 
 namespace {
+
+Vector3d unit_or_zero(const Vector3d& u) {
+  const double n = u.norm();
+  return n > 0.0 ? Vector3d(u / n) : Vector3d::Zero();
+}
 
 /// The speed s >= 0 with s + a s / sqrt(s^2 + vs^2) = u (u >= 0, a >= 0, vs > 0): backward
 /// Euler of regularised Coulomb friction. The left side g(s) + u is increasing and concave,
@@ -468,8 +607,13 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
   for (const Connection& c : m_.connections) {
     if (c.kind == ConnectionClass::kActuator) continue;
     if (c.damping == 0.0 && c.friction == 0.0 && c.drag == 0.0) continue;
-    const double w = inverse_mass(c.a) + inverse_mass(c.b);
+    double w = inverse_mass(c.a) + inverse_mass(c.b);
     if (!(w > 0.0)) continue;
+    // A rigid body's ghost point answers an impulse by its direction (its rotation).
+    const bool rigid = rigid_node(c.a) || rigid_node(c.b);
+    auto along = [&](const Vector3d& d) {
+      if (rigid) w = inverse_mass_along(c.a, y, d) + inverse_mass_along(c.b, y, d);
+    };
     // Each term: the relative velocity u changes by w J under the impulse J on a (-J on b).
     auto push = [&](const Vector3d& j) {
       add_impulse(c.a, j, y);
@@ -480,17 +624,20 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
       const double l = d.norm();
       if (l >= m_.simulation.zero_length_epsilon) {
         const Vector3d e = d / l;
+        along(e);
         const double u = e.dot(node_velocity(c.a, y) - node_velocity(c.b, y));
         push((-h * c.damping * u / (1.0 + h * c.damping * w)) * e);
       }
     }
     if (c.friction > 0.0) {
       const Vector3d u = node_velocity(c.a, y) - node_velocity(c.b, y);
+      along(unit_or_zero(u));
       push((-h * c.friction / (1.0 + h * c.friction * w)) * u);
     }
     if (c.drag > 0.0) {
       // |u_new| + h q w |u_new|^2 = |u|.
       const Vector3d u = node_velocity(c.a, y) - node_velocity(c.b, y);
+      along(unit_or_zero(u));
       const double s = u.norm();
       const double a = h * c.drag * w;
       if (s > 0.0 && a > 0.0) {
@@ -516,15 +663,26 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
       const bool plane = s.type == SurfaceType::kPlane;
       const double height = dir.dot(r);
       if (plane && height >= 0.0 && !s.bilateral) continue;
-      const double w = inverse_mass(n) + wg;
+      double w = inverse_mass(n) + wg;
       if (!(w > 0.0)) continue;
       Vector3d u = node_velocity(n, y);
       if (s.body >= 0) u -= node_velocity(g, y);
+      // A rigid body's ghost point answers an impulse by its direction (its rotation).
+      const bool rigid = rigid_node(n) || (s.body >= 0 && rigid_node(g));
+      auto along = [&](const Vector3d& d) {
+        if (!rigid) return w;
+        return inverse_mass_along(n, y, d) + (s.body >= 0 ? inverse_mass_along(g, y, d) : 0.0);
+      };
       // The damper acts on the constrained components: the normal one of a plane, the two
       // across a line, all three at a point.
       Vector3d j = Vector3d::Zero();
-      const double damp = h * s.damping / (1.0 + h * s.damping * w);
       double un = dir.dot(u);
+      if (rigid) {
+        w = along(plane                          ? dir
+                  : s.type == SurfaceType::kLine ? unit_or_zero(u - un * dir)
+                                                 : unit_or_zero(u));
+      }
+      const double damp = h * s.damping / (1.0 + h * s.damping * w);
       if (plane) {
         j = (-damp * un) * dir;
         un -= damp * w * un;
@@ -540,6 +698,7 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
         const Vector3d ut = u - dir * dir.dot(u);
         const double speed = ut.norm();
         if (normal > 0.0 && speed > 0.0) {
+          if (rigid) w = along(ut / speed);
           const double sn = friction_speed(speed, h * s.friction * normal * w, s.slip_velocity);
           j += ((sn - speed) / (w * speed)) * ut;
         }
@@ -556,6 +715,13 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
     const Vector3d dp = seg(y, 6 * j + 3) - seg(y_before, 6 * j + 3);
     dissipated -= dp.dot(seg(y_ref, 6 * j + 3) + 0.5 * dp) * inv_mass_[j];
   }
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const int r = rot_[b];
+    if (r < 0) continue;  // the rotation: -dL . I_w^-1 (L_ref + dL / 2)
+    const Vector3d dl = seg(y, r + 4) - seg(y_before, r + 4);
+    const Matrix3d iw = rigid_inverse_inertia(m_.bodies[b], rigid_rotation(y, r));
+    dissipated -= dl.dot(iw * (seg(y_ref, r + 4) + 0.5 * dl));
+  }
   return dissipated;
 }
 
@@ -566,7 +732,7 @@ void MechanismSystem::correct_step(const ode::Vec& y0, ode::Vec& y1) const {
       const double z0 = s.direction.dot(node_position(n, y0) - s.point);
       const double z1 = s.direction.dot(node_position(n, y1) - s.point);
       if ((z0 < 0.0) == (z1 < 0.0)) continue;  // no kink crossed: exact already
-      const double w = inverse_mass(n);
+      const double w = inverse_mass_along(n, y1, s.direction);
       if (!(w > 0.0)) continue;
       // Energy the kicks' trapezoidal contact work gave beyond the exact one [J].
       const double f0 = s.stiffness * std::max(0.0, -z0), f1 = s.stiffness * std::max(0.0, -z1);
@@ -584,19 +750,35 @@ void MechanismSystem::correct_step(const ode::Vec& y0, ode::Vec& y1) const {
 
 void MechanismSystem::momentum_mask(ode::Vec& mask) const {
   const int nm = static_cast<int>(m_.masses.size());
-  mask.setZero(6 * nm);
+  mask.setZero(dimension());
   for (int j = 0; j < nm; ++j) mask.segment<3>(6 * j + 3).setOnes();
+  for (int r : rot_) {
+    if (r >= 0) mask.segment<3>(r + 4).setOnes();
+  }
 }
 
 void MechanismSystem::position_rate(const ode::Vec& y, ode::Vec& dydt) const {
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) dydt.segment<3>(6 * j) = seg(y, 6 * j + 3) * inv_mass_[j];
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const int r = rot_[b];
+    if (r < 0) continue;
+    rigid_quaternion_rate(y, r, rigid_state(static_cast<int>(b), y).omega, dydt);
+  }
 }
 
 double MechanismSystem::kinetic_energy(const ode::Vec& y) const {
   const int nm = static_cast<int>(m_.masses.size());
   double k = 0.0;
   for (int j = 0; j < nm; ++j) k += 0.5 * seg(y, 6 * j + 3).squaredNorm() * inv_mass_[j];
+  // A rigid body's rotation, in the attitude of the last frames (the metric is evaluated on
+  // force vectors, whose position entries hold no attitude).
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const int r = rot_[b];
+    if (r < 0) continue;
+    const Vector3d l = seg(y, r + 4);
+    k += 0.5 * l.dot(rigid_inverse_inertia(m_.bodies[b], frames_[b].rotation) * l);
+  }
   return k;
 }
 
@@ -667,8 +849,12 @@ void MechanismSystem::jac_transfer(const NodeRef& target, const Vector3d& force)
   }
 }
 
-void MechanismSystem::jacobian(double /*t*/, const ode::Vec& y,
+void MechanismSystem::jacobian(double t, const ode::Vec& y,
                                Eigen::SparseMatrix<double>& jac) const {
+  if (any_rigid_) {  // a rigid body's rotation: forward differences of the whole RHS
+    ode::difference_jacobian(*this, t, y, jac);
+    return;
+  }
   update_frames(y, true);
   triplets_.clear();
   const int nm = static_cast<int>(m_.masses.size());
@@ -747,7 +933,20 @@ double MechanismSystem::error_norm(const ode::Vec& err, const ode::Vec& y0, cons
     for (int i = 0; i < 6; ++i)
       add(err[6 * j + i], std::max(std::abs(y0[6 * j + i]), std::abs(y1[6 * j + i])));
   }
-  for (const Body& b : m_.bodies) {
+  for (size_t bi = 0; bi < m_.bodies.size(); ++bi) {
+    const Body& b = m_.bodies[bi];
+    if (b.rigid) {  // its states are body-level already: CoM, quaternion, angular momentum
+      const int s = 6 * b.first_mass, r = rot_[bi];
+      const double lscale = std::max(seg(y0, r + 4).norm(), seg(y1, r + 4).norm());
+      for (int i = 0; i < 3; ++i) {
+        add(err[s + i], std::max(std::abs(y0[s + i]), std::abs(y1[s + i])));
+        add(err[s + 3 + i] / b.mass,
+            std::max(seg(y0, s + 3).norm(), seg(y1, s + 3).norm()) / b.mass);
+        add(err[r + 4 + i], lscale);
+      }
+      for (int i = 0; i < 4; ++i) add(err[r + i], 1.0);
+      continue;
+    }
     Vector3d c0 = Vector3d::Zero(), c1 = Vector3d::Zero(), dc = Vector3d::Zero();
     Vector3d p0 = Vector3d::Zero(), p1 = Vector3d::Zero(), dp = Vector3d::Zero();
     for (int i = 0; i < 4; ++i) {
@@ -794,6 +993,12 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   for (int j = 0; j < nm; ++j) {
     e.kinetic += 0.5 * seg(y, 6 * j + 3).squaredNorm() * inv_mass_[j];
     e.gravitational -= m_.masses[j].mass * m_.gravity.dot(seg(y, 6 * j));
+  }
+  for (size_t b = 0; b < m_.bodies.size(); ++b) {
+    const int r = rot_[b];
+    if (r < 0) continue;
+    const Vector3d l = seg(y, r + 4);
+    e.kinetic += 0.5 * l.dot(rigid_inverse_inertia(m_.bodies[b], frames_[b].rotation) * l);
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
   for (const Connection& c : m_.connections) {

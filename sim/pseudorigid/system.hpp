@@ -66,6 +66,19 @@ class MechanismSystem final : public ode::OdeSystem {
   /// contact force of energy-conserving contact schemes). Of the two roots the smaller
   /// impulse; when the node's normal motion cannot supply the energy, it stops it.
   void correct_step(const ode::Vec& y0, ode::Vec& y1) const override;
+  /// A rigid body's rotation (rigid_body.hpp): the drift of method verlet turns it by the
+  /// free rigid body's splitting flow; the masses drift by h p / m as usual.
+  bool has_drift() const override { return any_rigid_; }
+  void drift(double h, ode::Vec& y) const override;
+  /// True when the mechanism has a rigid body (Body::rigid).
+  bool has_rigid_body() const { return any_rigid_; }
+  /// Index of body b's rotation states in y (-1: a four-mass body).
+  int rotation_state(int b) const { return rot_[static_cast<size_t>(b)]; }
+  /// Adds a force F [N] at node n to the momentum rates of dydt (a ghost point of a rigid body:
+  /// on its CoM mass plus the torque r x F on its angular momentum; of a four-mass body: by
+  /// the barycentric weights).
+  void add_node_force(const NodeRef& n, const Eigen::Vector3d& f, const ode::Vec& y,
+                      ode::Vec& dydt) const;
   /// True when actuators or applied forces do work (power().actuator is not always zero).
   bool has_actuator_work() const { return has_actuator_work_; }
 
@@ -106,6 +119,12 @@ class MechanismSystem final : public ode::OdeSystem {
   long zero_length_triggers() const { return zero_length_; }
 
  private:
+  /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
+  struct RigidState {
+    Eigen::Matrix<double, 7, 1> key = Eigen::Matrix<double, 7, 1>::Constant(-1e300);
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< world [rad/s]
+  };
   struct Transfer {
     int mass;
     Eigen::Matrix3d t;  ///< force on the mass = t * force on the node
@@ -120,7 +139,21 @@ class MechanismSystem final : public ode::OdeSystem {
   /// dissipate(): inverse effective mass of node n for an impulse [1/kg] (barycentric
   /// ghost transfer: sum w_i^2 / m_i; anchors 0), and the impulse J [N s] applied to it.
   double inverse_mass(const NodeRef& n) const;
+  /// The inverse effective mass of node n for an impulse along unit d [1/kg]: inverse_mass(n)
+  /// unless n is a ghost point of a rigid body, 1/M + (r x d) . I_w^-1 (r x d) there.
+  double inverse_mass_along(const NodeRef& n, const ode::Vec& y, const Eigen::Vector3d& d) const;
+  /// n is a ghost point of a rigid body.
+  bool rigid_node(const NodeRef& n) const;
   void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
+  /// Body-attached surface on a rigid body: the force on node n, its reaction at the surface's
+  /// ghost point and the torque of the turning direction (attached_surface_forces) into
+  /// force_ and torque_.
+  void rigid_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
+  /// rotation states, compared exactly: one RHS reads them for every ghost point).
+  const RigidState& rigid_state(int b, const ode::Vec& y) const;
+  /// rhs(): the rigid bodies' rotation rates from torque_.
+  void rigid_rates(const ode::Vec& y, ode::Vec& dydt) const;
   void add_block(int row, int col, const Eigen::Matrix3d& b) const;
   void jac_force(const NodeRef& target, const NodeRef& source, const Eigen::Matrix3d& kx,
                  const Eigen::Matrix3d& kv) const;
@@ -186,6 +219,10 @@ class MechanismSystem final : public ode::OdeSystem {
   /// Set while conservative_rhs() runs: velocities of dissipative elements count as zero.
   mutable bool conservative_ = false;
   mutable ode::Vec dissipate_before_;  ///< dissipate(): the momenta before its updates
+  std::vector<int> rot_;               ///< per body: its rotation states (rigid), else -1
+  mutable std::vector<RigidState> rigid_;
+  bool any_rigid_ = false;
+  mutable std::vector<Eigen::Vector3d> torque_;  ///< rhs(): torque on each rigid body [N m]
 };
 
 /// Compares the analytic Jacobian at (t, y) with central differences of the

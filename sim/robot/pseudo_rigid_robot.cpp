@@ -21,12 +21,16 @@ RobotModel build_robot(const scene::Scene& s) {
   m.simulation.solver = p.solver;
   // Body-level error norm (optional): the solver controls the motion of the body
   // (CoM, attitude) and of the feet, not the internal vibration of the stiff springs.
-  m.simulation.error_norm = p.body_error_norm ? pr::ErrorNorm::kBody : pr::ErrorNorm::kState;
+  const bool rigid = p.body == scene::PseudoRigid::BodyKind::kRigid;
+  // (A rigid body's states are body-level already: the setting is unused there.)
+  m.simulation.error_norm =
+      p.body_error_norm && !rigid ? pr::ErrorNorm::kBody : pr::ErrorNorm::kState;
 
   // Hips: a body-only scene pushes at the CoM through one virtual leg.
   std::vector<Vector3d> hips =
       s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
   const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
+  if (dummy && rigid) throw std::invalid_argument("a rigid body has no dummy hip masses");
   Vector3d offset = Vector3d::Zero();  // main-mass centroid relative to the CoM, body frame [m]
   // Dummy masses are part of the body: the four main masses carry the rest so the
   // total mass and inertia about the CoM stay those of the scene.
@@ -59,6 +63,7 @@ RobotModel build_robot(const scene::Scene& s) {
   b.velocity = s.initial.velocity + b.omega.cross(b.attitude * offset);
   b.internal_stiffness = p.internal_stiffness;
   b.internal_damping = p.internal_damping;
+  b.rigid = rigid;
   std::string err;
   r.body = pr::add_body(m, b, &err);
   if (r.body < 0) throw std::invalid_argument("body: " + err);

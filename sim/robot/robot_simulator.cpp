@@ -9,6 +9,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/math/rotation.hpp"
+#include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/pseudorigid/stability.hpp"
 #include "sim/robot/robot_system.hpp"
 
@@ -276,7 +277,13 @@ void book_hip_work(RobotMonitors& m, double dE) {
 class Observer final : public ode::StepObserver {
  public:
   Observer(Run& run, double interval, int n, bool verlet)
-      : run_(run), interval_(interval), verlet_(verlet), yq_(n), ya_(n), fa_(n / 2), fb_(n / 2) {}
+      : run_(run),
+        interval_(interval),
+        verlet_(verlet),
+        yq_(n),
+        ya_(n),
+        fa_(run.sys.actuator_force_size()),
+        fb_(run.sys.actuator_force_size()) {}
   void on_step(const ode::Stepper& st, double t_stop) override {
     const double ta = st.t_prev(), tb = t_stop;
     const double d_a = run_.dissipated, w_a = run_.work;
@@ -341,12 +348,21 @@ class Observer final : public ode::StepObserver {
     const ode::Vec& yb = st.y();
     const bool on_b = run_.sys.actuator_mass_forces(yb, fb_);
     double w = 0.0;
-    const int nm = static_cast<int>(fa_.size() / 3);
+    const int nm = static_cast<int>(run_.model.mechanism.masses.size());
     for (int j = 0; j < nm; ++j) {
       Vector3d f = Vector3d::Zero();
       if (on_a_) f += fa_.segment<3>(3 * j);
       if (on_b) f += fb_.segment<3>(3 * j);
       w += 0.5 * f.dot(yb.segment<3>(6 * j) - ya_.segment<3>(6 * j));
+    }
+    const int r = run_.sys.rotation_state();
+    if (r >= 0) {  // rigid body: the torque over the step's rotation (world rotation vector)
+      Vector3d tau = Vector3d::Zero();
+      if (on_a_) tau += fa_.segment<3>(3 * nm);
+      if (on_b) tau += fb_.segment<3>(3 * nm);
+      const Eigen::AngleAxisd turn(pr::rigid_quaternion(yb, r) *
+                                   pr::rigid_quaternion(ya_, r).conjugate());
+      w += 0.5 * tau.dot(turn.angle() * turn.axis());
     }
     ya_ = yb;
     fa_.swap(fb_);
@@ -550,6 +566,10 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
 
   result.monitors.internal_stiffness =
       mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
+  if (sys.rotation_state() >= 0) {  // rigid body: no internal springs; the leg slides' stiffness
+    result.monitors.internal_stiffness =
+        model.slide.empty() || model.slide[0] < 0 ? 0.0 : mech.surfaces[model.slide[0]].stiffness;
+  }
   result.monitors.contact_stiffness =
       model.ground >= 0 ? mech.surfaces[model.ground].stiffness : 0.0;
   result.monitors.stiffness = model.stiffness;
@@ -974,7 +994,12 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
         const Vector3d dw = f.rotation * (scene.body.inertia.inverse() * d.angular_impulse);
         const auto& b = mech.bodies[model.body];
         const double e_before = msys.energies(y).total();
-        for (int k = 0; k < 4; ++k) {
+        const int rot = sys.rotation_state();
+        if (rot >= 0) {  // rigid body: dp on its CoM mass, dL = R H
+          y.segment<3>(6 * b.first_mass + 3) += d.linear_impulse;
+          y.segment<3>(rot + 4) += f.rotation * d.angular_impulse;
+        }
+        for (int k = 0; k < (rot >= 0 ? 0 : 4); ++k) {
           const int j = b.first_mass + k;
           const Vector3d arm = y.segment<3>(6 * j) - f.com;
           y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + mech.masses[j].mass * dw.cross(arm);

@@ -5,6 +5,9 @@
 
 #include <Eigen/Dense>
 
+#include "sim/ode/difference_jacobian.hpp"
+#include "sim/pseudorigid/rigid_body.hpp"
+
 namespace pronk::robot {
 
 namespace pr = pseudorigid;
@@ -21,8 +24,12 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism
       free_(model.hip.size(), false),
       fb_(model.hip.size(), 0.0) {
   for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
-  const int nm = static_cast<int>(mechanism.masses.size());
-  extra_ = fp_ = fm_ = ode::Vec::Zero(3 * nm);
+  rotation_ = sys_.rotation_state(model.body);
+  extra_ = fp_ = fm_ = ode::Vec::Zero(actuator_force_size());
+}
+
+int RobotSystem::actuator_force_size() const {
+  return 3 * static_cast<int>(inv_mass_.size()) + (rotation_ >= 0 ? 3 : 0);
 }
 
 Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
@@ -132,7 +139,12 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
     if (fi == 0.0) continue;
     const Vector3d F = fi * push_world(i, y);  // on the body at the hip
     const pr::NodeRef& h = model_.hip_node[i];
-    if (h.kind == pr::NodeRef::Kind::kMass) {
+    if (rotation_ >= 0) {  // rigid body: on its CoM mass, and the torque after the masses'
+      const Vector3d com = y.segment<3>(6 * body.first_mass);
+      f.segment<3>(3 * body.first_mass) += F;
+      f.segment<3>(3 * static_cast<int>(inv_mass_.size())) +=
+          (sys_.node_position(h, y) - com).cross(F);
+    } else if (h.kind == pr::NodeRef::Kind::kMass) {
       f.segment<3>(3 * h.index) += F;
     } else {
       const auto& g = model_.mechanism.ghost_points[h.index];
@@ -147,6 +159,7 @@ void RobotSystem::add_extra(const ode::Vec& y, ode::Vec& dydt) const {
   if (!extra_forces(y, extra_)) return;
   const int nm = static_cast<int>(inv_mass_.size());
   for (int j = 0; j < nm; ++j) dydt.segment<3>(6 * j + 3) += extra_.segment<3>(3 * j);
+  if (rotation_ >= 0) dydt.segment<3>(rotation_ + 4) += extra_.segment<3>(3 * nm);
 }
 
 void RobotSystem::rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
@@ -160,6 +173,10 @@ void RobotSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) 
 }
 
 void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const {
+  if (rotation_ >= 0) {  // rigid body: forward differences of the whole RHS, actuators included
+    ode::difference_jacobian(*this, t, y, J);
+    return;
+  }
   sys_.jacobian(t, y, J);
   if (!extra_forces(y, extra_)) return;
   // Columns the actuator forces read: the body masses' positions (attitude turns the
@@ -211,6 +228,7 @@ double RobotSystem::actuator_power(const ode::Vec& y) const {
   for (int j = 0; j < nm; ++j) {
     total += extra_.segment<3>(3 * j).dot(y.segment<3>(6 * j + 3) * inv_mass_[j]);
   }
+  if (rotation_ >= 0) total += extra_.segment<3>(3 * nm).dot(sys_.body_omega(model_.body, y));
   return total;
 }
 

@@ -44,6 +44,8 @@ class RobotSystem final : public ode::OdeSystem {
   /// part included) stay in the kicks: they act on the body's rotation, kd / I ~ 1e2 1/s,
   /// far from stiff at the steps the springs allow.
   bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
+  bool has_drift() const override { return sys_.has_drift(); }
+  void drift(double h, ode::Vec& y) const override { sys_.drift(h, y); }
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
   double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override {
     return sys_.dissipate(t, h, y_ref, y);
@@ -70,10 +72,15 @@ class RobotSystem final : public ode::OdeSystem {
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
+  /// 3 per mass, plus 3 (the torque) with a rigid body.
+  int actuator_force_size() const;
+  /// Index of the rigid body's rotation states in y; -1 for the four-mass body.
+  int rotation_state() const { return rotation_; }
   /// Work rate of the leg actuators at y [W] (friction and dampers are the mechanism's).
   double actuator_power(const ode::Vec& y) const;
-  /// The leg actuators' forces on the masses at y (3 per mass) [N] into f (sized 3 x
-  /// masses); false (f untouched) when none acts.
+  /// The leg actuators' forces on the masses at y (3 per mass) [N] into f (sized
+  /// actuator_force_size(); a rigid body's torque [N m] follows the masses'); false (f
+  /// untouched) when none acts.
   bool actuator_mass_forces(const ode::Vec& y, ode::Vec& f) const { return extra_forces(y, f); }
   /// Friction force on each foot (world) [N]; zero vectors off the ground.
   std::vector<Eigen::Vector3d> friction_forces(const ode::Vec& y) const;
@@ -99,6 +106,7 @@ class RobotSystem final : public ode::OdeSystem {
   std::vector<Eigen::Vector3d> push_;
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
+  int rotation_ = -1;  ///< rigid body: its rotation states in y
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
   mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)

@@ -99,7 +99,12 @@ struct PseudoRigid {
   /// (seed 2.7); `spring` = a foot mass on a line through the hip (prismatic
   /// leg) with a leg spring, damper and actuator in parallel (seed 2.8).
   enum class Legs { kForce, kSpring };
+  /// Body: four masses held by six internal springs (the default, the body's flexibility
+  /// resolved), or one rigid body with the same mass and inertia (sim/pseudorigid/rigid_body.hpp;
+  /// ghost-point hips only).
+  enum class BodyKind { kFourMasses, kRigid };
   Hips hips = Hips::kGhost;
+  BodyKind body = BodyKind::kFourMasses;
   double dummy_ratio = 0.02;  ///< dummy mass / body mass [-]
   Legs legs = Legs::kSpring;
   double internal_stiffness = 1e5;   ///< body springs, also the leg slides [N/m]
