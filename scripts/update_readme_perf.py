@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""Regenerates the README's `pronk bench` section from a bench.json.
+"""Regenerates the `pronk bench` section of docs/performance.md from a bench.json.
 
-Usage: update_readme_perf.py BENCH_DIR README.md [FIGURE_DIR]
+Usage: update_readme_perf.py [--check] BENCH_DIR PAGE.md [FIGURE_DIR]
 
 Replaces everything between the marker comments
     <!-- BEGIN pronk bench ... -->  and  <!-- END pronk bench -->
-with tables built from BENCH_DIR/bench.json (figures are linked from
-FIGURE_DIR, a path relative to the README; default: BENCH_DIR). Standard
-library only (Debian's /usr/bin/python3).
+of PAGE.md (docs/performance.md; the README held these tables before it was
+shrunk) with tables built from BENCH_DIR/bench.json (figures and data are
+linked from FIGURE_DIR, a path relative to PAGE.md; default: BENCH_DIR
+relative to PAGE.md's directory). --check writes nothing and exits 1 when
+PAGE.md is not what it would write. Standard library only (Debian's
+/usr/bin/python3).
 """
 import json
 import os
@@ -341,21 +344,31 @@ def section(d, figdir):
 
 
 def main():
-    if len(sys.argv) not in (3, 4):
+    args = sys.argv[1:]
+    check = bool(args) and args[0] == "--check"
+    if check:
+        args = args[1:]
+    if len(args) not in (2, 3):
         sys.exit(__doc__)
-    bench_dir, readme = sys.argv[1], sys.argv[2]
-    figdir = sys.argv[3] if len(sys.argv) == 4 else os.path.relpath(bench_dir, os.path.dirname(
+    bench_dir, readme = args[0], args[1]
+    figdir = args[2] if len(args) == 3 else os.path.relpath(bench_dir, os.path.dirname(
         os.path.abspath(readme)))
     with open(os.path.join(bench_dir, "bench.json")) as f:
         d = json.load(f)
     if d.get("quick"):
-        sys.exit("update_readme_perf: refusing a --quick run for the README; run the default bench")
+        sys.exit("update_readme_perf: refusing a --quick run for the docs; run the default bench")
     text = open(readme).read()
     if BEGIN not in text or END not in text:
         sys.exit(f"update_readme_perf: {readme} lacks the markers {BEGIN!r} ... {END!r}")
     head, rest = text.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
     new = head + section(d, figdir) + tail
+    if check:
+        if new != text:
+            sys.exit(f"update_readme_perf: {readme} differs from what {bench_dir}/bench.json gives; "
+                     "run bash scripts/update_readme_perf.sh")
+        print(f"update_readme_perf: {readme} is up to date with {bench_dir}/bench.json")
+        return
     tmp = readme + ".tmp"
     with open(tmp, "w") as f:
         f.write(new)

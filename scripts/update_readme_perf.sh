@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Regenerates the README's `pronk bench` section (between its marker comments)
-# from the bench output in results/bench/, so the numbers are never typed by hand.
+# Regenerates the `pronk bench` section of docs/performance.md (between its marker
+# comments) from the bench output in results/bench/, so the numbers are never typed by hand.
+# (The README's headline table quotes a few of them; update it by hand after a new run.)
 #   bash scripts/update_readme_perf.sh          # from the committed results/bench/bench.json
+#   bash scripts/update_readme_perf.sh --check  # write nothing; exit 1 if the page is stale
 #   bash scripts/update_readme_perf.sh --run    # build (with the peers, when installed), run
 #                                               # `pronk bench` into results/bench/, then update
 # Uses Debian's /usr/bin/python3 (standard library only).
@@ -15,4 +17,7 @@ if [[ "${1:-}" == "--run" ]]; then
     done) >/dev/null
   build/pronk bench --out results/bench
 fi
-/usr/bin/python3 scripts/update_readme_perf.py results/bench README.md
+if [[ "${1:-}" == "--check" ]]; then
+  exec /usr/bin/python3 scripts/update_readme_perf.py --check results/bench docs/performance.md
+fi
+/usr/bin/python3 scripts/update_readme_perf.py results/bench docs/performance.md

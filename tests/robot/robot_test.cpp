@@ -222,7 +222,7 @@ TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[r
 // model runs after a setpoint moving at 0.3 m/s for 10 s without falling, attitude
 // within 5 deg and lateral error within 2 cm after settling (the last 5 s), no foot
 // sliding more than 1 cm per stance. NOT MET YET: the spring stance is unstable in
-// roll/lateral (period-2 growth ~3x per stride; see README, "Limits (open)"), so the
+// roll/lateral (period-2 growth ~3x per stride; see docs/full_model.md, "Limits (open)"), so the
 // run falls at t ~ 1.7 s. Marked [!mayfail] so it reports without failing the suite.
 // Issue 4's running criterion: from 10 deg roll and 0.2 m lateral offset the robot
 // runs after a setpoint moving at 0.3 m/s for 10 s; over the last 5 s attitude within
