@@ -60,7 +60,8 @@ def main():
         json.dump(doc, f)
     configs = [("1 thread", None, ["--threads", "1"])]
     for n in (1, 2, 4):
-        configs.append(("%d MPI ranks" % n, n, []))
+        # One rank is a plain one-process run (no MPI_Init): one thread, like each rank.
+        configs.append(("%d MPI ranks" % n, n, ["--threads", "1"]))
     rows, reference = [], None
     for name, ranks, extra in configs:
         times = []
