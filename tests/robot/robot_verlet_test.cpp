@@ -20,7 +20,7 @@ using namespace pronk;
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kVerletDeg = M_PI / 180.0;
 
 scene::Scene load(const std::string& name, const std::vector<std::string>& set = {}) {
   return io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/" + name, set);
@@ -182,8 +182,8 @@ TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running)", "
   };
   const auto& fa = a.run.trajectory.back();
   const auto& fb = b.run.trajectory.back();
-  INFO("tilt " << tilt(fa.euler123) / kDeg << " vs " << tilt(fb.euler123) / kDeg << " deg");
-  CHECK(within(tilt(fa.euler123), tilt(fb.euler123), 0.1 * kDeg));
+  INFO("tilt " << tilt(fa.euler123) / kVerletDeg << " vs " << tilt(fb.euler123) / kVerletDeg << " deg");
+  CHECK(within(tilt(fa.euler123), tilt(fb.euler123), 0.1 * kVerletDeg));
   const double lat_a = fa.position.y() - fa.setpoint.y();
   const double lat_b = fb.position.y() - fb.setpoint.y();
   INFO("lateral " << lat_a << " vs " << lat_b << " m");
