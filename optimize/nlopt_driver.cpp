@@ -27,11 +27,15 @@ struct OptDeleter {
 };
 using OptPtr = std::unique_ptr<std::remove_pointer_t<nlopt_opt>, OptDeleter>;
 
-/// The algorithm for a name, or -1 (NLopt's own name lookup).
+/// The algorithm for a name, or -1: NLopt's own names (nlopt_algorithm_to_string).
+/// nlopt_algorithm_from_string is not used: for an unknown name it returns -1 as an
+/// nlopt_algorithm, a value outside the enum (undefined behaviour to load).
 int algorithm_id(const std::string& name) {
-  const nlopt_algorithm a = nlopt_algorithm_from_string(name.c_str());
-  const int id = static_cast<int>(a);
-  return (id >= 0 && id < NLOPT_NUM_ALGORITHMS) ? id : -1;
+  for (int id = 0; id < NLOPT_NUM_ALGORITHMS; ++id) {
+    const char* n = nlopt_algorithm_to_string(static_cast<nlopt_algorithm>(id));
+    if (n != nullptr && name == n) return id;
+  }
+  return -1;
 }
 
 double dummy_function(unsigned, const double*, double*, void*) { return 0.0; }
