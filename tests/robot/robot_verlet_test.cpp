@@ -182,7 +182,8 @@ TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running)", "
   };
   const auto& fa = a.run.trajectory.back();
   const auto& fb = b.run.trajectory.back();
-  INFO("tilt " << tilt(fa.euler123) / kVerletDeg << " vs " << tilt(fb.euler123) / kVerletDeg << " deg");
+  INFO("tilt " << tilt(fa.euler123) / kVerletDeg << " vs " << tilt(fb.euler123) / kVerletDeg
+               << " deg");
   CHECK(within(tilt(fa.euler123), tilt(fb.euler123), 0.1 * kVerletDeg));
   const double lat_a = fa.position.y() - fa.setpoint.y();
   const double lat_b = fb.position.y() - fb.setpoint.y();
