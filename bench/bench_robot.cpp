@@ -17,7 +17,8 @@
 //    relative to the energy scale, and the RODAS4 / Verlet CPU ratio; the same with the body
 //    as one rigid body ("pseudo_rigid": {"body": "rigid"}), its CPU relative to the four-mass
 //    body's and its strides against them (largest apex and touchdown-attitude differences).
-// Usage: bench_robot [repeats [groups]]; groups is "all" (default) or "running".
+// Usage: bench_robot [repeats [groups]]; groups is "all" (default), "running" or
+// "running_verlet" (the Verlet rows of "running" alone, for profiling).
 #include <time.h>
 
 #include <algorithm>
@@ -106,7 +107,7 @@ double median(std::vector<double> v) {
 
 /// pr_running for 10 s on RODAS4 (the scene's settings) and on Verlet, `repeats` interleaved
 /// runs each: median CPU time, and the ratio.
-void running(int repeats, bool* first) {
+void running(int repeats, bool verlet_only, bool* first) {
   struct Setting {
     const char* name;
     std::vector<std::string> set;
@@ -115,16 +116,20 @@ void running(int repeats, bool* first) {
   };
   std::vector<Setting> settings = {
       {"rodas4", {R"(/pseudo_rigid/solver={"method":"rodas4"})"}, {}, {}},
-      {"verlet", {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})"}, {}, {}},
+      {"verlet",
+       {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4,"energy_tol":1e-5})"},
+       {},
+       {}},
       {"rodas4_rigid",
        {R"(/pseudo_rigid/solver={"method":"rodas4"})", R"(/pseudo_rigid/body="rigid")"},
        {},
        {}},
       {"verlet_rigid",
-       {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4})",
+       {R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4,"energy_tol":1e-5})",
         R"(/pseudo_rigid/body="rigid")"},
        {},
        {}}};
+  if (verlet_only) settings = {settings[1], settings[3]};
   for (int k = 0; k < repeats; ++k) {
     for (Setting& st : settings) {
       std::vector<std::string> set = st.set;
@@ -157,6 +162,10 @@ void running(int repeats, bool* first) {
         c.rhs_evaluations, c.jacobian_evaluations, r.run.strides.size(),
         worst / r.monitors.energy_scale, r.monitors.energy_drift / r.monitors.energy_scale);
     *first = false;
+  }
+  if (verlet_only) {
+    std::fflush(stdout);
+    return;
   }
   std::printf(",\n    {\"group\": \"running\", \"rodas4_over_verlet_cpu\": %.4g}",
               median(settings[0].cpu) / median(settings[1].cpu));
@@ -191,7 +200,7 @@ int main(int argc, char** argv) {
       ladder(m, &first);
     }
   }
-  running(repeats, &first);
+  running(repeats, argc > 2 && std::string(argv[2]) == "running_verlet", &first);
   std::printf("\n  ]\n}\n");
   return 0;
 }

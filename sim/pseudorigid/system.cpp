@@ -63,6 +63,20 @@ MechanismSystem::MechanismSystem(const Mechanism& m)
       (m.simulation.ghost_transfer == GhostTransfer::kMinNorm && !m.ghost_points.empty());
 }
 
+namespace {
+
+/// |l - l0| / l0 of a connection with rest length l0 > 0 and separation d; u, when given, is
+/// its stored energy k (l - l0)^2 / 2, from which |l - l0| follows without a second norm.
+double connection_strain(const Connection& c, const Vector3d& d, double u = -1.0) {
+  if (c.stiffness > 0.0) {
+    if (u < 0.0) u = connection_energy(c, d);
+    return std::sqrt(2.0 * u / c.stiffness) / c.rest_length;
+  }
+  return std::abs(d.norm() - c.rest_length) / c.rest_length;
+}
+
+}  // namespace
+
 const BodyFrame& MechanismSystem::fitted_frame(int b, const ode::Vec& y) const {
   const Body& body = m_.bodies[b];
   if (body.rigid) {
@@ -106,7 +120,7 @@ const std::vector<BodyFrame>& MechanismSystem::frames(const ode::Vec& y) const {
   return frames_;
 }
 
-Vector3d MechanismSystem::node_position(const NodeRef& n, const ode::Vec& y) const {
+Vector3d MechanismSystem::point_position(const NodeRef& n, const ode::Vec& y) const {
   switch (n.kind) {
     case NodeRef::Kind::kMass:
       return seg(y, 6 * n.index);
@@ -124,7 +138,7 @@ Vector3d MechanismSystem::node_position(const NodeRef& n, const ode::Vec& y) con
   return Vector3d::Zero();
 }
 
-Vector3d MechanismSystem::node_velocity(const NodeRef& n, const ode::Vec& y) const {
+Vector3d MechanismSystem::point_velocity(const NodeRef& n, const ode::Vec& y) const {
   switch (n.kind) {
     case NodeRef::Kind::kMass:
       return seg(y, 6 * n.index + 3) * inv_mass_[n.index];
@@ -207,28 +221,16 @@ void MechanismSystem::apply(const NodeRef& n, const Vector3d& f) const {
   for (int i = 0; i < k; ++i) force_.segment<3>(3 * tr[i].mass) += tr[i].t * f;
 }
 
-MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, const NodeRef& n,
-                                                           const ode::Vec& y) const {
-  SurfaceEval e;
-  Vector3d p, vp;
-  if (s.body >= 0) {
-    const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
-    p = node_position(g, y);
-    vp = s.damping != 0.0 ? node_velocity(g, y) : Vector3d::Zero();
-    e.dir = frames_[s.body].rotation * s.direction;
-  } else {
-    p = s.point;
-    vp = Vector3d::Zero();
-    e.dir = s.direction;
-  }
+bool MechanismSystem::surface_gap(const Surface& s, const NodeRef& n, const ode::Vec& y,
+                                  SurfaceEval& e) const {
+  const Vector3d p =
+      s.body >= 0 ? node_position(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y) : s.point;
+  e.dir = s.body >= 0 ? Vector3d(frames_[s.body].rotation * s.direction) : s.direction;
   e.r = node_position(n, y) - p;
-  // The velocity enters only the damper and the friction.
-  const bool moving = !conservative_ && (s.damping != 0.0 || s.friction != 0.0);
-  e.v = moving ? Vector3d(node_velocity(n, y) - vp) : Vector3d::Zero();
   switch (s.type) {
     case SurfaceType::kPlane: {
       const double h = e.dir.dot(e.r);
-      if (h >= 0.0 && !s.bilateral) return e;
+      if (h >= 0.0 && !s.bilateral) return false;
       e.proj = e.dir * e.dir.transpose();
       e.penetration = std::abs(h);
       break;
@@ -242,6 +244,21 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
       e.penetration = e.r.norm();
       break;
   }
+  return true;
+}
+
+MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, const NodeRef& n,
+                                                           const ode::Vec& y) const {
+  SurfaceEval e;
+  // The velocity enters only the damper and the friction.
+  const bool moving = !conservative_ && (s.damping != 0.0 || s.friction != 0.0);
+  if (moving) {
+    const Vector3d vp = s.body >= 0 && s.damping != 0.0
+                            ? node_velocity(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y)
+                            : Vector3d::Zero();
+    e.v = node_velocity(n, y) - vp;
+  }
+  if (!surface_gap(s, n, y, e)) return e;
   e.active = true;
   e.force = -e.proj * (s.stiffness * e.r + s.damping * e.v);
   if (s.friction > 0.0) {  // grounded planes only (the loader enforces it)
@@ -457,9 +474,15 @@ void MechanismSystem::rigid_rates(const ode::Vec& y, ode::Vec& dydt) const {
 const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode::Vec& y) const {
   RigidState& k = rigid_[static_cast<size_t>(b)];
   const int r = rot_[static_cast<size_t>(b)];
-  if (y.segment<7>(r) != k.key) {
-    k.key = y.segment<7>(r);
+  // The rotation follows the quaternion alone: an impulse (a new angular momentum) keeps it.
+  const bool turned = y.segment<4>(r) != k.key.head<4>();
+  if (turned) {
+    k.key.head<4>() = y.segment<4>(r);
     k.rotation = rigid_rotation(y, r);
+    k.inverse_inertia = rigid_inverse_inertia(m_.bodies[static_cast<size_t>(b)], k.rotation);
+  }
+  if (turned || y.segment<3>(r + 4) != k.key.tail<3>()) {
+    k.key.tail<3>() = y.segment<3>(r + 4);
     k.omega = rigid_omega(m_.bodies[static_cast<size_t>(b)], k.rotation, seg(y, r + 4));
   }
   return k;
@@ -551,9 +574,9 @@ double MechanismSystem::inverse_mass_along(const NodeRef& n, const ode::Vec& y,
   if (!rigid_node(n)) return inverse_mass(n);
   const GhostPoint& g = m_.ghost_points[n.index];
   const Body& b = m_.bodies[g.body];
-  const Matrix3d& r = rigid_state(g.body, y).rotation;
-  const Vector3d a = (r * g.local).cross(d);
-  return inv_mass_[b.first_mass] * d.squaredNorm() + a.dot(rigid_inverse_inertia(b, r) * a);
+  const RigidState& k = rigid_state(g.body, y);
+  const Vector3d a = (k.rotation * g.local).cross(d);
+  return inv_mass_[b.first_mass] * d.squaredNorm() + a.dot(k.inverse_inertia * a);
 }
 
 void MechanismSystem::add_impulse(const NodeRef& n, const Vector3d& j, ode::Vec& y) const {
@@ -719,7 +742,7 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
     const int r = rot_[b];
     if (r < 0) continue;  // the rotation: -dL . I_w^-1 (L_ref + dL / 2)
     const Vector3d dl = seg(y, r + 4) - seg(y_before, r + 4);
-    const Matrix3d iw = rigid_inverse_inertia(m_.bodies[b], rigid_rotation(y, r));
+    const Matrix3d& iw = rigid_state(static_cast<int>(b), y).inverse_inertia;
     dissipated -= dl.dot(iw * (seg(y_ref, r + 4) + 0.5 * dl));
   }
   return dissipated;
@@ -1007,14 +1030,8 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     switch (c.kind) {
       case ConnectionClass::kInternal:
         e.internal += u;
-        if (c.rest_length > 0.0 && c.stiffness > 0.0) {
-          // |l - l0| from the stored energy u = k (l - l0)^2 / 2 (no second norm).
-          mon.max_strain =
-              std::max(mon.max_strain, std::sqrt(2.0 * u / c.stiffness) / c.rest_length);
-        } else if (c.rest_length > 0.0) {
-          mon.max_strain =
-              std::max(mon.max_strain, std::abs(d.norm() - c.rest_length) / c.rest_length);
-        }
+        if (c.rest_length > 0.0)
+          mon.max_strain = std::max(mon.max_strain, connection_strain(c, d, u));
         break;
       case ConnectionClass::kLeg:
         e.leg += u;
@@ -1076,8 +1093,21 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
 }
 
 StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
+  // observe()'s monitors alone (the same expressions): no energies, no surface forces.
+  if (rhs_needs_frames_) update_frames(y, false);
   StateMonitors mon;
-  observe(y, nullptr, &mon, nullptr);
+  for (const Connection& c : m_.connections) {
+    if (c.kind != ConnectionClass::kInternal || !(c.rest_length > 0.0)) continue;
+    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    mon.max_strain = std::max(mon.max_strain, connection_strain(c, d));
+  }
+  SurfaceEval e;
+  for (const Surface& s : m_.surfaces) {
+    for (const NodeRef& n : s.nodes) {
+      if (surface_gap(s, n, y, e))
+        mon.max_penetration = std::max(mon.max_penetration, e.penetration);
+    }
+  }
   return mon;
 }
 

@@ -89,8 +89,14 @@ class MechanismSystem final : public ode::OdeSystem {
 
   /// Body frames (attitude, CoM) at y; valid until the next call.
   const std::vector<BodyFrame>& frames(const ode::Vec& y) const;
-  Eigen::Vector3d node_position(const NodeRef& n, const ode::Vec& y) const;
-  Eigen::Vector3d node_velocity(const NodeRef& n, const ode::Vec& y) const;
+  Eigen::Vector3d node_position(const NodeRef& n, const ode::Vec& y) const {
+    if (n.kind == NodeRef::Kind::kMass) return y.segment<3>(6 * n.index);  // (inline: hot)
+    return point_position(n, y);
+  }
+  Eigen::Vector3d node_velocity(const NodeRef& n, const ode::Vec& y) const {
+    if (n.kind == NodeRef::Kind::kMass) return y.segment<3>(6 * n.index + 3) * inv_mass_[n.index];
+    return point_velocity(n, y);
+  }
   Eigen::Vector3d reference_position(int i, const ode::Vec& y) const;
   /// World-frame angular velocity of body b [rad/s] (least squares).
   Eigen::Vector3d body_omega(int b, const ode::Vec& y) const;
@@ -120,10 +126,14 @@ class MechanismSystem final : public ode::OdeSystem {
 
  private:
   /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
+  /// node_position and node_velocity of a ghost point or an anchor.
+  Eigen::Vector3d point_position(const NodeRef& n, const ode::Vec& y) const;
+  Eigen::Vector3d point_velocity(const NodeRef& n, const ode::Vec& y) const;
   struct RigidState {
     Eigen::Matrix<double, 7, 1> key = Eigen::Matrix<double, 7, 1>::Constant(-1e300);
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d omega = Eigen::Vector3d::Zero();  ///< world [rad/s]
+    Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Identity();  ///< world R I^-1 R^T
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();                ///< world [rad/s]
   };
   struct Transfer {
     int mass;
@@ -171,6 +181,9 @@ class MechanismSystem final : public ode::OdeSystem {
     double normal = 0.0;  ///< normal force N >= 0 the friction scales with [N]
   };
   SurfaceEval eval_surface(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  /// The geometry part of eval_surface (dir, r, proj, penetration into e); false when a
+  /// one-sided plane is not touched. Needs frames_ current for a body-attached surface.
+  bool surface_gap(const Surface& s, const NodeRef& n, const ode::Vec& y, SurfaceEval& e) const;
   /// Forces of a body-attached surface on node n as the exact gradient of its
   /// potential U = 1/2 k |P(R) (x_n - p)|^2 (p = sum w_i x_i the surface's ghost
   /// point, P turning with the Kabsch rotation R): F on n, -F on the body masses

@@ -33,7 +33,10 @@ int RobotSystem::actuator_force_size() const {
 }
 
 Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
-  const Eigen::Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+  return push_world(i, y, sys_.frames(y)[model_.body].rotation);
+}
+
+Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const {
   if (!free_[i] || model_.foot[i] < 0) return R * push_[i];
   const Vector3d d = sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i]);
   const double len = d.norm();
@@ -90,7 +93,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   u.resize(g.size());
   Vector3d n = Vector3d::Zero();
   for (size_t k = 0; k < g.size(); ++k) {
-    u[k] = push_world(g[k], y);
+    u[k] = push_world(g[k], y, R);
     n += u[k];
   }
   n.normalize();
@@ -131,13 +134,14 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   if (!any) return false;
   f.setZero();
   const auto& body = model_.mechanism.bodies[model_.body];
+  const Eigen::Matrix3d R = sys_.frames(y)[model_.body].rotation;
   for (size_t i = 0; i < force_.size(); ++i) {
     double fi = force_[i] + fb_[i];
     if (settings_.actuator_max_force > 0.0) {
       fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
     }
     if (fi == 0.0) continue;
-    const Vector3d F = fi * push_world(i, y);  // on the body at the hip
+    const Vector3d F = fi * push_world(i, y, R);  // on the body at the hip
     const pr::NodeRef& h = model_.hip_node[i];
     if (rotation_ >= 0) {  // rigid body: on its CoM mass, and the torque after the masses'
       const Vector3d com = y.segment<3>(6 * body.first_mass);

@@ -70,6 +70,8 @@ class RobotSystem final : public ode::OdeSystem {
   /// Unit world direction of leg i's actuator push on the body (foot -> hip for a
   /// free leg, R push otherwise).
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y) const;
+  /// push_world with the body's rotation R at y already known.
+  Eigen::Vector3d push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
   /// 3 per mass, plus 3 (the torque) with a rigid body.
