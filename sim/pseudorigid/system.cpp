@@ -82,7 +82,7 @@ const BodyFrame& MechanismSystem::fitted_frame(int b, const ode::Vec& y) const {
   if (body.rigid) {
     BodyFrame& f = fit_frame_[b];
     f.com = seg(y, 6 * body.first_mass);
-    f.rotation = rigid_state(b, y).rotation;
+    f.rotation = rigid_pose(b, y).rotation;
     f.stretch.setIdentity();
     return f;
   }
@@ -127,7 +127,7 @@ Vector3d MechanismSystem::point_position(const NodeRef& n, const ode::Vec& y) co
     case NodeRef::Kind::kGhost: {
       const GhostPoint& g = m_.ghost_points[n.index];
       const int f = m_.bodies[g.body].first_mass;
-      if (rot_[g.body] >= 0) return seg(y, 6 * f) + rigid_state(g.body, y).rotation * g.local;
+      if (rot_[g.body] >= 0) return seg(y, 6 * f) + rigid_pose(g.body, y).rotation * g.local;
       Vector3d x = Vector3d::Zero();
       for (int i = 0; i < 4; ++i) x += g.weights[i] * seg(y, 6 * (f + i));
       return x;
@@ -471,17 +471,24 @@ void MechanismSystem::rigid_rates(const ode::Vec& y, ode::Vec& dydt) const {
   }
 }
 
-const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode::Vec& y) const {
+const MechanismSystem::RigidState& MechanismSystem::rigid_pose(int b, const ode::Vec& y) const {
   RigidState& k = rigid_[static_cast<size_t>(b)];
   const int r = rot_[static_cast<size_t>(b)];
   // The rotation follows the quaternion alone: an impulse (a new angular momentum) keeps it.
-  const bool turned = y.segment<4>(r) != k.key.head<4>();
-  if (turned) {
+  if (y[r] != k.key[0] || y[r + 1] != k.key[1] || y[r + 2] != k.key[2] || y[r + 3] != k.key[3]) {
     k.key.head<4>() = y.segment<4>(r);
+    k.key.tail<3>().setConstant(std::numeric_limits<double>::quiet_NaN());  // omega stale
     k.rotation = rigid_rotation(y, r);
     k.inverse_inertia = rigid_inverse_inertia(m_.bodies[static_cast<size_t>(b)], k.rotation);
   }
-  if (turned || y.segment<3>(r + 4) != k.key.tail<3>()) {
+  return k;
+}
+
+const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode::Vec& y) const {
+  rigid_pose(b, y);
+  RigidState& k = rigid_[static_cast<size_t>(b)];
+  const int r = rot_[static_cast<size_t>(b)];
+  if (!(y[r + 4] == k.key[4] && y[r + 5] == k.key[5] && y[r + 6] == k.key[6])) {
     k.key.tail<3>() = y.segment<3>(r + 4);
     k.omega = rigid_omega(m_.bodies[static_cast<size_t>(b)], k.rotation, seg(y, r + 4));
   }
@@ -574,7 +581,7 @@ double MechanismSystem::inverse_mass_along(const NodeRef& n, const ode::Vec& y,
   if (!rigid_node(n)) return inverse_mass(n);
   const GhostPoint& g = m_.ghost_points[n.index];
   const Body& b = m_.bodies[g.body];
-  const RigidState& k = rigid_state(g.body, y);
+  const RigidState& k = rigid_pose(g.body, y);
   const Vector3d a = (k.rotation * g.local).cross(d);
   return inv_mass_[b.first_mass] * d.squaredNorm() + a.dot(k.inverse_inertia * a);
 }
@@ -585,7 +592,7 @@ void MechanismSystem::add_impulse(const NodeRef& n, const Vector3d& j, ode::Vec&
   } else if (rigid_node(n)) {
     const GhostPoint& g = m_.ghost_points[n.index];
     const int first = m_.bodies[g.body].first_mass;
-    const Vector3d arm = rigid_state(g.body, y).rotation * g.local;
+    const Vector3d arm = rigid_pose(g.body, y).rotation * g.local;
     y.segment<3>(6 * first + 3) += j;
     y.segment<3>(rot_[g.body] + 4) += arm.cross(j);
   } else if (n.kind == NodeRef::Kind::kGhost) {
@@ -742,7 +749,7 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
     const int r = rot_[b];
     if (r < 0) continue;  // the rotation: -dL . I_w^-1 (L_ref + dL / 2)
     const Vector3d dl = seg(y, r + 4) - seg(y_before, r + 4);
-    const Matrix3d& iw = rigid_state(static_cast<int>(b), y).inverse_inertia;
+    const Matrix3d& iw = rigid_pose(static_cast<int>(b), y).inverse_inertia;
     dissipated -= dl.dot(iw * (seg(y_ref, r + 4) + 0.5 * dl));
   }
   return dissipated;

@@ -162,6 +162,9 @@ class MechanismSystem final : public ode::OdeSystem {
   /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
   /// rotation states, compared exactly: one RHS reads them for every ghost point).
   const RigidState& rigid_state(int b, const ode::Vec& y) const;
+  /// rigid_state without the angular velocity (rotation and world inverse inertia, memoised
+  /// on the quaternion alone; omega is not current in the result).
+  const RigidState& rigid_pose(int b, const ode::Vec& y) const;
   /// rhs(): the rigid bodies' rotation rates from torque_.
   void rigid_rates(const ode::Vec& y, ode::Vec& dydt) const;
   void add_block(int row, int col, const Eigen::Matrix3d& b) const;
