@@ -272,6 +272,33 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, con
   return e;
 }
 
+namespace {
+
+/// A body-attached surface's projection P onto its constrained components and its
+/// direction's torque tau = -dU/dtheta [N m] for a node at r from the surface's ghost point
+/// (dir: the world direction); false when a one-sided plane is not touched.
+bool attached_projection(const Surface& s, const Vector3d& dir, const Vector3d& r, Matrix3d& proj,
+                         Vector3d& tau) {
+  proj = Matrix3d::Identity();
+  tau = Vector3d::Zero();
+  switch (s.type) {
+    case SurfaceType::kPlane:
+      if (dir.dot(r) >= 0.0 && !s.bilateral) return false;
+      proj = dir * dir.transpose();
+      tau = -s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kLine:
+      proj = Matrix3d::Identity() - dir * dir.transpose();
+      tau = s.stiffness * dir.dot(r) * dir.cross(r);
+      break;
+    case SurfaceType::kPoint:
+      break;
+  }
+  return true;
+}
+
+}  // namespace
+
 void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
                                               std::vector<std::pair<int, Vector3d>>& out,
                                               const BodyFrame* known_frame,
@@ -285,22 +312,9 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   const Vector3d r = node_position(n, y) - node_position(g, y);
   const Vector3d v =
       conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
-  Matrix3d proj = Matrix3d::Identity();
-  Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the direction [N m]
-  switch (s.type) {
-    case SurfaceType::kPlane:
-      if (dir.dot(r) >= 0.0 && !s.bilateral) return;
-      proj = dir * dir.transpose();
-      tau = -s.stiffness * dir.dot(r) * dir.cross(r);
-      break;
-    case SurfaceType::kLine:
-      proj = Matrix3d::Identity() - dir * dir.transpose();
-      tau = s.stiffness * dir.dot(r) * dir.cross(r);
-      break;
-    case SurfaceType::kPoint:
-      proj = Matrix3d::Identity();
-      break;
-  }
+  Matrix3d proj;
+  Vector3d tau;  // -dU/dtheta through the direction [N m]
+  if (!attached_projection(s, dir, r, proj, tau)) return;
   const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
   if (n.kind == NodeRef::Kind::kMass) {
     out.emplace_back(n.index, force);
@@ -507,21 +521,9 @@ void MechanismSystem::rigid_surface_forces(const Surface& s, const NodeRef& n,
   const Vector3d r = node_position(n, y) - node_position(g, y);
   const Vector3d v =
       conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
-  Matrix3d proj = Matrix3d::Identity();
-  Vector3d tau = Vector3d::Zero();  // -dU/dtheta through the turning direction [N m]
-  switch (s.type) {
-    case SurfaceType::kPlane:
-      if (dir.dot(r) >= 0.0 && !s.bilateral) return;
-      proj = dir * dir.transpose();
-      tau = -s.stiffness * dir.dot(r) * dir.cross(r);
-      break;
-    case SurfaceType::kLine:
-      proj = Matrix3d::Identity() - dir * dir.transpose();
-      tau = s.stiffness * dir.dot(r) * dir.cross(r);
-      break;
-    case SurfaceType::kPoint:
-      break;
-  }
+  Matrix3d proj;
+  Vector3d tau;  // -dU/dtheta through the turning direction [N m]
+  if (!attached_projection(s, dir, r, proj, tau)) return;
   const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
   apply(n, force);
   apply(g, -force);

@@ -414,6 +414,15 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     check_error(parse_error(doc), "/controller/kd/4", "a finite number in [0, 1000000000]",
                 "number -0.5");
   }
+  SECTION("hop-height feedback bounds") {
+    doc["pseudo_rigid"]["hop_trim_max"] = 11;
+    check_error(parse_error(doc), "/pseudo_rigid/hop_trim_max", "a finite number in [0, 10]",
+                "number 11");
+    doc["pseudo_rigid"]["hop_trim_max"] = 3;
+    doc["pseudo_rigid"]["hop_trim_gain"] = -0.1;
+    check_error(parse_error(doc), "/pseudo_rigid/hop_trim_gain", "a finite number in [0, 2]",
+                "number -0.1");
+  }
   SECTION("max_strides 0") {
     doc["simulation"]["max_strides"] = 0;
     check_error(parse_error(doc), "/simulation/max_strides", "an integer in [1, 1000000000]",
