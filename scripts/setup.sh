@@ -3,14 +3,16 @@
 # nothing when everything is already installed.
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
-      libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin)
+      libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin
+      libsundials-dev)
 # The Python module (pybind11 over Debian's python3) and what its tests and examples use.
 pkgs+=(pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy python3-matplotlib
        python3-optuna)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
-# The optional peers of `pronk bench` (SUNDIALS CVODE, MuJoCo); CMake builds them when found.
-if [[ "${PRONK_WITH_PEERS:-0}" == 1 ]]; then pkgs+=(libsundials-dev libmujoco-dev); fi
+# The optional MuJoCo peer of `pronk bench` (the CVODE peer uses the SUNDIALS installed
+# above); CMake builds the peers when found.
+if [[ "${PRONK_WITH_PEERS:-0}" == 1 ]]; then pkgs+=(libmujoco-dev); fi
 # The pages (view.html, report.html) and their browser test: Node, npm and Chromium; the test
 # job (scripts/test.sh) asks for them. Node and npm may come from elsewhere (command found).
 web=${PRONK_WITH_WEB:-0}

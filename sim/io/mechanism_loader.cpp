@@ -214,8 +214,9 @@ class Loader {
           "output_interval", "at most 1e7 output samples (t_end / output_interval)",
           std::to_string(o->output_interval) + " s for t_end " + std::to_string(o->t_end) + " s");
     }
-    const std::string method = s.choice_or(
-        "method", "rodas4", {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "verlet"});
+    const std::string method =
+        s.choice_or("method", "rodas4",
+                    {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
     if (!ode::parse_method(method, &o->solver.method)) {
       throw s.error("method", "a solver name", method);
     }

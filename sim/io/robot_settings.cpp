@@ -84,7 +84,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     auto& so = p.solver;
     const std::string method =
         o.choice_or("method", std::string(ode::to_string(so.method)),
-                    {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "verlet"});
+                    {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
     ode::parse_method(method, &so.method);
     so.rtol = o.positive_or("rtol", so.rtol);
     so.atol = o.positive_or("atol", so.atol);

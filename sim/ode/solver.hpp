@@ -13,19 +13,21 @@ namespace pronk::ode {
 
 /// The integration methods pronk offers.
 enum class Method {
-  kEuler,   ///< explicit Euler, fixed step, order 1
-  kRk2,     ///< explicit midpoint (RK2), fixed step, order 2
-  kRk4,     ///< classic Runge-Kutta, fixed step, order 4
-  kDopri5,  ///< Dormand-Prince 5(4), adaptive, 4th-order dense output
-  kRodas4,  ///< Rosenbrock RODAS4 (Hairer-Wanner), L-stable, adaptive, 3rd-order dense output
-  kRadau5,  ///< Radau IIA order 5 (Hairer-Wanner RADAU5), fully implicit (Newton), L-stable,
-            ///< adaptive, collocation dense output; for stiff rotating springs
-  kVerlet,  ///< velocity Verlet (Stormer-Verlet, kick-drift-kick), fixed step, order 2,
-            ///< symplectic: one RHS per step, no energy drift on conservative mechanisms;
-            ///< only for systems with a mechanical split (pseudo-rigid mechanisms)
+  kEuler,     ///< explicit Euler, fixed step, order 1
+  kRk2,       ///< explicit midpoint (RK2), fixed step, order 2
+  kRk4,       ///< classic Runge-Kutta, fixed step, order 4
+  kDopri5,    ///< Dormand-Prince 5(4), adaptive, 4th-order dense output
+  kRodas4,    ///< Rosenbrock RODAS4 (Hairer-Wanner), L-stable, adaptive, 3rd-order dense output
+  kRadau5,    ///< Radau IIA order 5 (Hairer-Wanner RADAU5), fully implicit (Newton), L-stable,
+              ///< adaptive, collocation dense output; for stiff rotating springs
+  kCvodeBdf,  ///< SUNDIALS CVODE, variable-order BDF (1-5), adaptive, Nordsieck dense output;
+              ///< the system's analytic Jacobian with dense LU (sim/ode/cvode.cpp)
+  kVerlet,    ///< velocity Verlet (Stormer-Verlet, kick-drift-kick), fixed step, order 2,
+              ///< symplectic: one RHS per step, no energy drift on conservative mechanisms;
+              ///< only for systems with a mechanical split (pseudo-rigid mechanisms)
 };
 
-/// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "verlet".
+/// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet".
 std::string_view to_string(Method m);
 /// Parses the names of to_string; returns false on an unknown name.
 bool parse_method(std::string_view name, Method* out);

@@ -21,6 +21,8 @@ std::string_view to_string(Method m) {
       return "rodas4";
     case Method::kRadau5:
       return "radau5";
+    case Method::kCvodeBdf:
+      return "cvode_bdf";
     case Method::kVerlet:
       return "verlet";
   }
@@ -29,7 +31,7 @@ std::string_view to_string(Method m) {
 
 bool parse_method(std::string_view name, Method* out) {
   for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
-                   Method::kRadau5, Method::kVerlet}) {
+                   Method::kRadau5, Method::kCvodeBdf, Method::kVerlet}) {
     if (name == to_string(m)) {
       *out = m;
       return true;
@@ -39,7 +41,8 @@ bool parse_method(std::string_view name, Method* out) {
 }
 
 bool is_adaptive(Method m) {
-  return m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5;
+  return m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5 ||
+         m == Method::kCvodeBdf;
 }
 
 namespace {

@@ -37,6 +37,9 @@ std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n
 /// RADAU5 (Radau IIA, order 5) with simplified Newton, error control and dense output.
 std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n);
 
+/// SUNDIALS CVODE BDF (sim/ode/cvode.cpp): the system's analytic Jacobian with dense LU.
+std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n);
+
 /// Velocity Verlet with fixed step options.h_fixed [s] and cubic Hermite dense output;
 /// reset() throws std::invalid_argument for a system without a mechanical split.
 std::unique_ptr<Stepper> make_verlet_stepper(const SolverOptions& options, int n);
