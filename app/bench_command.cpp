@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_headline.hpp"
 #include "app/bench_suite.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/build_info.hpp"
@@ -331,170 +332,6 @@ json run_peer(const std::string& name, const std::string& what, const BenchArgs&
   return j;
 }
 
-/// Fastest wall time among `pts` of `problem`/`solver` whose omega_final <= limit.
-const WorkPoint* fastest_within(const std::vector<WorkPoint>& pts, const std::string& problem,
-                                const std::string& solver, double stiffness, double limit) {
-  const WorkPoint* best = nullptr;
-  for (const auto& p : pts) {
-    if (p.problem != problem || p.solver != solver || p.stiffness != stiffness) continue;
-    auto it = p.errors.find("omega_final");
-    if (p.status != "completed" || it == p.errors.end() || it->second > limit) continue;
-    if (!best || p.cpu_s < best->cpu_s) best = &p;
-  }
-  return best;
-}
-
-const WorkPoint* find_point(const std::vector<WorkPoint>& pts, const std::string& problem,
-                            const std::string& solver, const std::string& variant, double k) {
-  for (const auto& p : pts) {
-    if (p.problem == problem && p.solver == solver && p.variant == variant && p.stiffness == k) {
-      return &p;
-    }
-  }
-  return nullptr;
-}
-
-json point_brief(const WorkPoint* p) {
-  if (!p) return {{"found", false}};
-  json j = {{"solver", p->solver}, {"variant", p->variant}, {"tol", p->tol}, {"wall_s", p->wall_s},
-            {"cpu_s", p->cpu_s},   {"steps", p->steps},     {"rhs", p->rhs}};
-  if (p->errors.count("omega_final")) j["omega_final"] = p->errors.at("omega_final");
-  return j;
-}
-
-/// The headline ratios against the targets of issues 3, 4 and 7.
-json headline(const std::vector<WorkPoint>& sat, const std::vector<WorkPoint>& sweep,
-              const json& drop, const json& cvode, const json& mujoco) {
-  json h;
-  const double limit = 1e-5;
-  const WorkPoint* rodas = fastest_within(sat, "satellite", "rodas4", 1e6, limit);
-  const WorkPoint* dopri = fastest_within(sat, "satellite", "dopri5", 1e6, limit);
-  h["satellite"]["omega_error_limit"] = limit;
-  h["satellite"]["rodas4"] = point_brief(rodas);
-  h["satellite"]["dopri5"] = point_brief(dopri);
-  if (rodas && dopri) h["satellite"]["dopri5_over_rodas4"] = dopri->cpu_s / rodas->cpu_s;
-  h["satellite"]["anchor_cvode_issue3_s"] = 0.35;
-  if (rodas) h["satellite"]["anchor_over_rodas4"] = 0.35 / rodas->cpu_s;
-  // The fastest pronk setting of any solver within the limit (issue 3's target is pronk's).
-  const WorkPoint* fastest = nullptr;
-  for (const char* solver : {"rodas4", "radau5", "dopri5", "rk4", "verlet"}) {
-    const WorkPoint* p = fastest_within(sat, "satellite", solver, 1e6, limit);
-    if (p && (!fastest || p->cpu_s < fastest->cpu_s)) fastest = p;
-  }
-  h["satellite"]["fastest"] = point_brief(fastest);
-  if (fastest) {
-    h["satellite"]["fastest"]["h"] = fastest->h;
-    h["satellite"]["anchor_over_fastest"] = 0.35 / fastest->cpu_s;
-  }
-  if (cvode.value("available", false) && rodas) {
-    double best = -1;
-    json best_run;
-    for (const auto& r : cvode["satellite"]) {
-      if (r.value("status", "") != "completed" || r["omega_final"].get<double>() > limit) continue;
-      if (best < 0 || r["cpu_s"].get<double>() < best) {
-        best = r["cpu_s"];
-        best_run = r;
-      }
-    }
-    if (best > 0) {
-      h["satellite"]["cvode"] = best_run;
-      h["satellite"]["cvode_over_rodas4"] = best / rodas->cpu_s;
-      h["satellite"]["target_cvode_over_rodas4"] = 10.0;
-      if (fastest) h["satellite"]["cvode_over_fastest"] = best / fastest->cpu_s;
-    }
-  }
-  for (const std::string v : {"state", "body"}) {
-    const WorkPoint* lo = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e4);
-    const WorkPoint* hi = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e8);
-    if (lo && hi && lo->cpu_s > 0) {
-      h["stiffness_growth"]["rodas4_" + v + "_norm"] = {
-          {"cpu_1e4_s", lo->cpu_s},
-          {"cpu_1e8_s", hi->cpu_s},
-          {"ratio", hi->cpu_s / lo->cpu_s},
-          {"steps_ratio", static_cast<double>(hi->steps) / std::max(1L, lo->steps)}};
-    }
-  }
-  for (const char* solver : {"radau5", "verlet"}) {
-    const WorkPoint* lo = nullptr;
-    const WorkPoint* hi = nullptr;
-    for (const auto& p : sweep) {
-      if (p.problem != "satellite_stiffness" || p.solver != solver) continue;
-      if (p.stiffness == 1e4) lo = &p;
-      if (p.stiffness == 1e8) hi = &p;
-    }
-    if (lo && hi && lo->cpu_s > 0) {
-      h["stiffness_growth"][solver] = {
-          {"cpu_1e4_s", lo->cpu_s},
-          {"cpu_1e8_s", hi->cpu_s},
-          {"ratio", hi->cpu_s / lo->cpu_s},
-          {"steps_ratio", static_cast<double>(hi->steps) / std::max(1L, lo->steps)}};
-    }
-  }
-  h["stiffness_growth"]["target_ratio"] = 3.0;
-  if (cvode.value("available", false) && cvode.contains("stiffness")) {
-    double lo = -1, hi = -1;
-    for (const auto& r : cvode["stiffness"]) {
-      if (r["variant"] != "dense_analytic") continue;
-      if (r["stiffness"].get<double>() == 1e4) lo = r["cpu_s"];
-      if (r["stiffness"].get<double>() == 1e8) hi = r["cpu_s"];
-    }
-    if (lo > 0 && hi > 0) h["stiffness_growth"]["cvode_dense_analytic"] = {{"ratio", hi / lo}};
-  }
-  // Quad hopper: the fastest pronk run with energy-balance drift <= 1e-3 of the drop
-  // energy (issue 4) vs MuJoCo Euler at 1 ms, per simulated second; the drift taken at
-  // every sample ("energy_error_rel") or at the flight apexes, hop to hop
-  // ("energy_error_apex_rel": it leaves out a fixed-step method's bounded transient inside
-  // impacts). Returns its CPU time [s] (-1: none) and the run.
-  auto fastest_drop = [&drop](const char* error_field, json* run,
-                              const char* body = "four_masses") {
-    double best = -1;
-    *run = {{"found", false}};
-    for (const auto& r : drop) {
-      if (r["status"] != "completed" || r[error_field].get<double>() > 1e-3) continue;
-      if (r.value("body", "four_masses") != body) continue;
-      if (best < 0 || r["cpu_s"].get<double>() < best) {
-        best = r["cpu_s"];
-        *run = r;
-      }
-    }
-    return best;
-  };
-  json best_run, best_apex_run;
-  const double best = fastest_drop("energy_error_rel", &best_run);
-  const double best_apex = fastest_drop("energy_error_apex_rel", &best_apex_run);
-  h["quad_hopper"]["pronk"] = best_run;
-  h["quad_hopper"]["pronk_apex_balance"] = best_apex_run;
-  // The same with the body as one rigid body (target: <= 0.5x MuJoCo Euler 1 ms).
-  json best_rigid_run;
-  const double best_rigid = fastest_drop("energy_error_rel", &best_rigid_run, "rigid");
-  h["quad_hopper"]["pronk_rigid"] = best_rigid_run;
-  h["quad_hopper"]["rigid_target_over_mujoco_euler_1ms"] = 0.5;
-  h["quad_hopper"]["anchor_mujoco_euler_1ms_issue4_s"] = 0.041;
-  if (mujoco.value("available", false)) {
-    for (const auto& r : mujoco["runs"]) {
-      if (r["integrator"] == "Euler" && r["timestep"].get<double>() == 1e-3) {
-        h["quad_hopper"]["mujoco_euler_1ms"] = r;
-        if (best > 0) {
-          // Same simulated time on both sides (the peer scales to 10 s).
-          const double pronk_per_s = best / best_run["t_end"].get<double>();
-          h["quad_hopper"]["pronk_over_mujoco_euler_1ms"] =
-              pronk_per_s / r["cost_per_sim_s"].get<double>();
-        }
-        if (best_rigid > 0) {
-          h["quad_hopper"]["pronk_rigid_over_mujoco_euler_1ms"] =
-              best_rigid / best_rigid_run["t_end"].get<double>() /
-              r["cost_per_sim_s"].get<double>();
-        }
-        if (best_apex > 0) {
-          h["quad_hopper"]["pronk_apex_balance_over_mujoco_euler_1ms"] =
-              best_apex / best_apex_run["t_end"].get<double>() / r["cost_per_sim_s"].get<double>();
-        }
-      }
-    }
-  }
-  return h;
-}
-
 std::string now_utc() {
   const std::time_t t = std::time(nullptr);
   char b[32];
@@ -521,7 +358,20 @@ void progress(const BenchArgs& a, const std::string& what) {
 
 }  // namespace
 
-int run_bench(const BenchArgs& args) {
+namespace {
+
+/// Everything the suites and peers measured, in the order they ran.
+struct BenchResults {
+  std::vector<WorkPoint> sat, sweep, hop;
+  std::vector<bench::OrderFit> orders;
+  std::vector<FidelityPoint> ladder;
+  bench::LadderRobustness robustness;
+  json drop;
+  json cvode, mujoco;
+  bool peer_failed = false;
+};
+
+bench::BenchConfig bench_config(const BenchArgs& args) {
   bench::BenchConfig c;
   c.quick = args.quick;
   c.repeat = args.repeat > 0 ? args.repeat : (args.quick ? 1 : 3);
@@ -537,40 +387,43 @@ int run_bench(const BenchArgs& args) {
   } catch (const std::exception& e) {
     throw io::InputError("--out", "", "a directory pronk can create", e.what());
   }
-  const auto t0 = std::chrono::steady_clock::now();
+  return c;
+}
 
+void run_bench_suites(const BenchArgs& args, const bench::BenchConfig& c, BenchResults* r) {
   progress(args, "satellite work-precision");
-  const auto sat = bench::satellite_work_precision(c);
+  r->sat = bench::satellite_work_precision(c);
   progress(args, "satellite stiffness sweep");
-  const auto sweep = bench::satellite_stiffness_sweep(c);
+  r->sweep = bench::satellite_stiffness_sweep(c);
   progress(args, "reduced hopper work-precision");
-  const auto hop = bench::hopper_work_precision(c);
-  const auto orders = bench::fit_orders(hop);
+  r->hop = bench::hopper_work_precision(c);
+  r->orders = bench::fit_orders(r->hop);
   progress(args, "fidelity ladder");
-  const auto ladder = bench::fidelity_ladder(c);
+  r->ladder = bench::fidelity_ladder(c);
   progress(args, c.quick ? "fidelity ladder: robustness (reduced rungs)"
                          : "fidelity ladder: robustness (the pseudo-rigid rung takes ~2 min)");
-  const auto robustness = bench::ladder_robustness(c);
+  r->robustness = bench::ladder_robustness(c);
   progress(args, "quad hopper drop (pseudo-rigid)");
-  const json drop = bench::quad_hopper_drop(c);
+  r->drop = bench::quad_hopper_drop(c);
+}
 
-  bool peer_failed = false;
-  json cvode = {{"available", false}, {"reason", "--no-peers"}};
-  json mujoco = cvode;
-  if (!args.no_peers) {
-    progress(args, "peer: SUNDIALS CVODE");
-    // CVODE also integrates pronk's quad hopper drop: the same mechanism, from a file.
-    const std::string quad = args.out_dir + "/quad_hopper_mechanism.json";
-    io::write_file_atomic(quad, bench::quad_hopper_mechanism(c.quick ? 2.0 : 10.0).dump(2) + "\n");
-    cvode = run_peer("pronk_peer_cvode", "libsundials-dev", args, c.repeat, &peer_failed,
-                     " --mechanism '" + quad + "' --drop 0.15");
-    progress(args, "peer: MuJoCo");
-    mujoco = run_peer("pronk_peer_mujoco", "libmujoco-dev", args, c.repeat, &peer_failed);
-  }
+void run_bench_peers(const BenchArgs& args, const bench::BenchConfig& c, BenchResults* r) {
+  r->cvode = {{"available", false}, {"reason", "--no-peers"}};
+  r->mujoco = r->cvode;
+  if (args.no_peers) return;
+  progress(args, "peer: SUNDIALS CVODE");
+  // CVODE also integrates pronk's quad hopper drop: the same mechanism, from a file.
+  const std::string quad = args.out_dir + "/quad_hopper_mechanism.json";
+  io::write_file_atomic(quad, bench::quad_hopper_mechanism(c.quick ? 2.0 : 10.0).dump(2) + "\n");
+  r->cvode = run_peer("pronk_peer_cvode", "libsundials-dev", args, c.repeat, &r->peer_failed,
+                      " --mechanism '" + quad + "' --drop 0.15");
+  progress(args, "peer: MuJoCo");
+  r->mujoco = run_peer("pronk_peer_mujoco", "libmujoco-dev", args, c.repeat, &r->peer_failed);
+}
 
-  std::vector<WorkPoint> all = sat;
-  all.insert(all.end(), sweep.begin(), sweep.end());
-  all.insert(all.end(), hop.begin(), hop.end());
+/// bench.json without its total wall time.
+json bench_document(const bench::BenchConfig& c, const BenchResults& r,
+                    const std::vector<WorkPoint>& all) {
   json doc;
   doc["benchmark"] = "pronk bench";
   doc["version"] = pronk::version();
@@ -582,7 +435,7 @@ int run_bench(const BenchArgs& args) {
   doc["work_precision"] = json::array();
   for (const auto& p : all) doc["work_precision"].push_back(to_json(p));
   doc["orders"] = json::array();
-  for (const auto& o : orders) {
+  for (const auto& o : r.orders) {
     doc["orders"].push_back({{"problem", o.problem},
                              {"solver", o.solver},
                              {"error", o.error},
@@ -590,30 +443,31 @@ int run_bench(const BenchArgs& args) {
                              {"points", o.points}});
   }
   doc["fidelity_ladder"] = json::array();
-  for (const auto& p : ladder) doc["fidelity_ladder"].push_back(to_json(p));
-  doc["fidelity_robustness"] = to_json(robustness);
-  doc["quad_hopper_drop"] = drop;
-  doc["peers"]["cvode"] = cvode;
-  doc["peers"]["mujoco"] = mujoco;
-  doc["headline"] = headline(sat, sweep, drop, cvode, mujoco);
-  doc["total_wall_s"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const auto& p : r.ladder) doc["fidelity_ladder"].push_back(to_json(p));
+  doc["fidelity_robustness"] = to_json(r.robustness);
+  doc["quad_hopper_drop"] = r.drop;
+  doc["peers"]["cvode"] = r.cvode;
+  doc["peers"]["mujoco"] = r.mujoco;
+  doc["headline"] = headline(r.sat, r.sweep, r.drop, r.cvode, r.mujoco);
+  return doc;
+}
 
-  const std::string& dir = args.out_dir;
-  io::write_file_atomic(dir + "/bench.json", doc.dump(2) + "\n");
-  io::write_file_atomic(dir + "/work_precision.csv", work_precision_csv(all));
-  io::write_file_atomic(dir + "/fidelity_ladder.csv", ladder_csv(ladder));
-  io::write_file_atomic(dir + "/fidelity_robustness.csv", robustness_csv(robustness));
+std::vector<Series> series_list(std::map<std::string, Series>& by) {
+  std::vector<Series> s;
+  for (auto& [k, v] : by) s.push_back(v);
+  return s;
+}
 
-  // Figures.
-  auto sat_series = wp_series(sat, "satellite", "omega_final");
-  if (cvode.value("available", false)) {
+/// The work-precision diagrams of the satellite and the hopper.
+void write_work_precision_figures(const std::string& dir, const BenchResults& r) {
+  auto sat_series = wp_series(r.sat, "satellite", "omega_final");
+  if (r.cvode.value("available", false)) {
     std::map<std::string, Series> by;
-    for (const auto& r : cvode["satellite"]) {
-      if (r["status"] != "completed") continue;
-      const std::string key = "CVODE BDF (" + r["variant"].get<std::string>() + ")";
+    for (const auto& x : r.cvode["satellite"]) {
+      if (x["status"] != "completed") continue;
+      const std::string key = "CVODE BDF (" + x["variant"].get<std::string>() + ")";
       by[key].title = key;
-      by[key].xy.push_back({r["cpu_s"].get<double>(), r["omega_final"].get<double>()});
+      by[key].xy.push_back({x["cpu_s"].get<double>(), x["omega_final"].get<double>()});
     }
     for (auto& [k, v] : by) sat_series.push_back(v);
   }
@@ -625,108 +479,141 @@ int run_bench(const BenchArgs& args) {
       {"hopper_work_precision",
        loglog_script("hopper_work_precision",
                      "Reduced legged pulse hopper: final CoM error vs CPU time", "CPU time [s]",
-                     "final CoM position error [m]", wp_series(hop, "hopper", "final_state"))},
+                     "final CoM position error [m]", wp_series(r.hop, "hopper", "final_state"))},
   };
   for (const auto& [name, script] : figs) {
     if (!script.empty()) io::render_figure(dir, name, script);
   }
-  if (const std::string script = robustness_script(robustness); !script.empty())
-    io::render_figure(dir, "fidelity_robustness", script);
-  {  // stiffness sweep: wall time vs k
-    std::map<std::string, Series> by;
-    for (const auto& p : sweep) {
-      if (p.status != "completed") continue;
-      const std::string key = p.solver + " (" + p.variant + " norm)";
-      by[key].title = key;
-      by[key].xy.push_back({p.stiffness, p.cpu_s});
-    }
-    if (cvode.value("available", false)) {
-      for (const auto& r : cvode["stiffness"]) {
-        if (r["status"] != "completed") continue;
-        const std::string key = "CVODE BDF (" + r["variant"].get<std::string>() + ")";
-        by[key].title = key;
-        by[key].xy.push_back({r["stiffness"].get<double>(), r["cpu_s"].get<double>()});
-      }
-    }
-    std::vector<Series> s;
-    for (auto& [k, v] : by) s.push_back(v);
-    const std::string script =
-        loglog_script("satellite_stiffness", "Satellite, tol 1e-6: CPU time vs internal stiffness",
-                      "internal stiffness [N/m]", "CPU time [s]", s);
-    if (!script.empty()) io::render_figure(dir, "satellite_stiffness", script);
-  }
-  {  // quad hopper drop: energy error vs cost per simulated second, pronk and MuJoCo
-    std::map<std::string, Series> by;
-    for (const auto& r : drop) {
-      if (r["status"] != "completed") continue;
-      std::string key = r.value("method", "rodas4") == "verlet"
-                            ? std::string("pronk Verlet")
-                            : "pronk RODAS4 (" + r["norm"].get<std::string>() + " norm)";
-      if (r.value("body", "four_masses") == "rigid") key += ", rigid body";
-      by[key].title = key;
-      by[key].xy.push_back({r["cost_per_sim_s"].get<double>(),
-                            std::max(1e-12, r["energy_error_rel"].get<double>())});
-    }
-    if (mujoco.value("available", false)) {
-      for (const auto& r : mujoco["runs"]) {
-        if (r["status"] != "completed") continue;
-        const std::string key = "MuJoCo " + r["integrator"].get<std::string>();
-        by[key].title = key;
-        by[key].xy.push_back({r["cost_per_sim_s"].get<double>(),
-                              std::max(1e-12, std::abs(r["total_energy_loss_rel"].get<double>()))});
-      }
-    }
-    std::vector<Series> s;
-    for (auto& [k, v] : by) s.push_back(v);
-    const std::string script =
-        loglog_script("quad_hopper_work_precision", "Quad spring hopper drop: energy error vs cost",
-                      "CPU time per simulated second [s/s]", "energy error / drop energy", s);
-    if (!script.empty()) io::render_figure(dir, "quad_hopper_work_precision", script);
-  }
-  {  // fixed-step convergence on the hopper
-    std::map<std::string, Series> by;
-    for (const auto& p : hop) {
-      if (p.problem != "hopper" || p.h <= 0 || p.status != "completed") continue;
-      by[p.solver].title = p.solver;
-      by[p.solver].xy.push_back({p.h, p.errors.at("final_state")});
-    }
-    std::vector<Series> s;
-    for (auto& [k, v] : by) s.push_back(v);
-    const std::string script =
-        loglog_script("hopper_convergence", "Fixed-step methods on the hopper: error vs step",
-                      "step h [s]", "final CoM position error [m]", s);
-    if (!script.empty()) io::render_figure(dir, "hopper_convergence", script);
-  }
+}
 
-  if (!args.quiet) {
-    const json& h = doc["headline"];
-    std::printf("pronk bench%s: %.1f s on %s\n", c.quick ? " --quick" : "",
-                doc["total_wall_s"].get<double>(), doc["machine"].get<std::string>().c_str());
-    std::printf("%s\n", h.dump(2).c_str());
-    std::printf("fidelity ladder, robustness (%ld trials of %g s per duty, map_seed_duty row 0):\n",
-                robustness.trials, robustness.trial_duration);
-    for (const auto& r : robustness.rungs) {
-      if (!r.available) {
-        std::printf("  %-12s %s\n", r.model.c_str(), r.note.c_str());
-        continue;
-      }
-      std::string cells;
-      for (const auto& x : r.cells) {
-        char b[96];
-        std::snprintf(b, sizeof b, " %g: %ld/%ld (rho %.3g)", x.duty, x.stabilized, x.trials,
-                      x.spectral_radius);
-        cells += b;
-      }
-      std::printf("  %-12s%s; boundary %s %s; disagreements vs pulse %ld\n", r.model.c_str(),
-                  cells.c_str(), r.boundary_status.c_str(), fmt(r.boundary).c_str(),
-                  r.disagreements_vs_pulse);
-    }
-    std::printf(
-        "outputs in %s/ (bench.json, work_precision.csv, fidelity_ladder.csv, "
-        "fidelity_robustness.csv, *.svg)\n",
-        dir.c_str());
+/// Stiffness sweep: wall time vs k.
+void write_stiffness_figure(const std::string& dir, const BenchResults& r) {
+  std::map<std::string, Series> by;
+  for (const auto& p : r.sweep) {
+    if (p.status != "completed") continue;
+    const std::string key = p.solver + " (" + p.variant + " norm)";
+    by[key].title = key;
+    by[key].xy.push_back({p.stiffness, p.cpu_s});
   }
-  return peer_failed ? 1 : 0;
+  if (r.cvode.value("available", false)) {
+    for (const auto& x : r.cvode["stiffness"]) {
+      if (x["status"] != "completed") continue;
+      const std::string key = "CVODE BDF (" + x["variant"].get<std::string>() + ")";
+      by[key].title = key;
+      by[key].xy.push_back({x["stiffness"].get<double>(), x["cpu_s"].get<double>()});
+    }
+  }
+  const std::string script =
+      loglog_script("satellite_stiffness", "Satellite, tol 1e-6: CPU time vs internal stiffness",
+                    "internal stiffness [N/m]", "CPU time [s]", series_list(by));
+  if (!script.empty()) io::render_figure(dir, "satellite_stiffness", script);
+}
+
+/// Quad hopper drop: energy error vs cost per simulated second, pronk and MuJoCo.
+void write_drop_figure(const std::string& dir, const BenchResults& r) {
+  std::map<std::string, Series> by;
+  for (const auto& x : r.drop) {
+    if (x["status"] != "completed") continue;
+    std::string key = x.value("method", "rodas4") == "verlet"
+                          ? std::string("pronk Verlet")
+                          : "pronk RODAS4 (" + x["norm"].get<std::string>() + " norm)";
+    if (x.value("body", "four_masses") == "rigid") key += ", rigid body";
+    by[key].title = key;
+    by[key].xy.push_back(
+        {x["cost_per_sim_s"].get<double>(), std::max(1e-12, x["energy_error_rel"].get<double>())});
+  }
+  if (r.mujoco.value("available", false)) {
+    for (const auto& x : r.mujoco["runs"]) {
+      if (x["status"] != "completed") continue;
+      const std::string key = "MuJoCo " + x["integrator"].get<std::string>();
+      by[key].title = key;
+      by[key].xy.push_back({x["cost_per_sim_s"].get<double>(),
+                            std::max(1e-12, std::abs(x["total_energy_loss_rel"].get<double>()))});
+    }
+  }
+  const std::string script = loglog_script(
+      "quad_hopper_work_precision", "Quad spring hopper drop: energy error vs cost",
+      "CPU time per simulated second [s/s]", "energy error / drop energy", series_list(by));
+  if (!script.empty()) io::render_figure(dir, "quad_hopper_work_precision", script);
+}
+
+/// Fixed-step convergence on the hopper.
+void write_convergence_figure(const std::string& dir, const BenchResults& r) {
+  std::map<std::string, Series> by;
+  for (const auto& p : r.hop) {
+    if (p.problem != "hopper" || p.h <= 0 || p.status != "completed") continue;
+    by[p.solver].title = p.solver;
+    by[p.solver].xy.push_back({p.h, p.errors.at("final_state")});
+  }
+  const std::string script =
+      loglog_script("hopper_convergence", "Fixed-step methods on the hopper: error vs step",
+                    "step h [s]", "final CoM position error [m]", series_list(by));
+  if (!script.empty()) io::render_figure(dir, "hopper_convergence", script);
+}
+
+void write_bench_figures(const std::string& dir, const BenchResults& r) {
+  write_work_precision_figures(dir, r);
+  if (const std::string script = robustness_script(r.robustness); !script.empty())
+    io::render_figure(dir, "fidelity_robustness", script);
+  write_stiffness_figure(dir, r);
+  write_drop_figure(dir, r);
+  write_convergence_figure(dir, r);
+}
+
+void print_bench_summary(const bench::BenchConfig& c, const json& doc,
+                         const bench::LadderRobustness& robustness, const std::string& dir) {
+  const json& h = doc["headline"];
+  std::printf("pronk bench%s: %.1f s on %s\n", c.quick ? " --quick" : "",
+              doc["total_wall_s"].get<double>(), doc["machine"].get<std::string>().c_str());
+  std::printf("%s\n", h.dump(2).c_str());
+  std::printf("fidelity ladder, robustness (%ld trials of %g s per duty, map_seed_duty row 0):\n",
+              robustness.trials, robustness.trial_duration);
+  for (const auto& r : robustness.rungs) {
+    if (!r.available) {
+      std::printf("  %-12s %s\n", r.model.c_str(), r.note.c_str());
+      continue;
+    }
+    std::string cells;
+    for (const auto& x : r.cells) {
+      char b[96];
+      std::snprintf(b, sizeof b, " %g: %ld/%ld (rho %.3g)", x.duty, x.stabilized, x.trials,
+                    x.spectral_radius);
+      cells += b;
+    }
+    std::printf("  %-12s%s; boundary %s %s; disagreements vs pulse %ld\n", r.model.c_str(),
+                cells.c_str(), r.boundary_status.c_str(), fmt(r.boundary).c_str(),
+                r.disagreements_vs_pulse);
+  }
+  std::printf(
+      "outputs in %s/ (bench.json, work_precision.csv, fidelity_ladder.csv, "
+      "fidelity_robustness.csv, *.svg)\n",
+      dir.c_str());
+}
+
+}  // namespace
+
+int run_bench(const BenchArgs& args) {
+  const bench::BenchConfig c = bench_config(args);
+  const auto t0 = std::chrono::steady_clock::now();
+  BenchResults r;
+  run_bench_suites(args, c, &r);
+  run_bench_peers(args, c, &r);
+
+  std::vector<WorkPoint> all = r.sat;
+  all.insert(all.end(), r.sweep.begin(), r.sweep.end());
+  all.insert(all.end(), r.hop.begin(), r.hop.end());
+  json doc = bench_document(c, r, all);
+  doc["total_wall_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const std::string& dir = args.out_dir;
+  io::write_file_atomic(dir + "/bench.json", doc.dump(2) + "\n");
+  io::write_file_atomic(dir + "/work_precision.csv", work_precision_csv(all));
+  io::write_file_atomic(dir + "/fidelity_ladder.csv", ladder_csv(r.ladder));
+  io::write_file_atomic(dir + "/fidelity_robustness.csv", robustness_csv(r.robustness));
+  write_bench_figures(dir, r);
+  if (!args.quiet) print_bench_summary(c, doc, r.robustness, dir);
+  return r.peer_failed ? 1 : 0;
 }
 
 }  // namespace pronk::app

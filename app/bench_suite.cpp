@@ -763,26 +763,20 @@ nlohmann::json quad_hopper_mechanism(double t_end) {
             {"atol", 1e-6}}}};
 }
 
-nlohmann::json quad_hopper_drop(const BenchConfig& c) {
-  const double t_end = c.quick ? 2.0 : 10.0;
-  const nlohmann::json doc = quad_hopper_mechanism(t_end);
-  const pr::Mechanism base = io::parse_mechanism(doc, "<quad_hopper_drop>").mechanism;
-  // The same hopper with its body as one rigid body (the mechanism's "rigid": true).
-  nlohmann::json doc_rigid = doc;
-  doc_rigid["bodies"][0]["rigid"] = true;
-  const pr::Mechanism base_rigid =
-      io::parse_mechanism(doc_rigid, "<quad_hopper_drop_rigid>").mechanism;
-  // 10 s of the drop costs seconds per run: each point is run once (c.repeat is
-  // not applied here), so the default bench stays within its budget.
-  struct Setting {
-    Method method;
-    double tol;  ///< rtol = atol (RODAS4) or the fixed step h [s] (Verlet)
-    pr::ErrorNorm norm;
-    double energy_tol = 0.0;  ///< Verlet: simulation.energy_tol (0: every step at h)
-    bool rigid = false;       ///< the body as one rigid body
-  };
-  std::vector<Setting> settings;
-  for (double tol : c.quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6}) {
+namespace {
+
+/// One timed run of the quad hopper drop.
+struct QuadDropSetting {
+  Method method;
+  double tol;  ///< rtol = atol (RODAS4) or the fixed step h [s] (Verlet)
+  pr::ErrorNorm norm;
+  double energy_tol = 0.0;  ///< Verlet: simulation.energy_tol (0: every step at h)
+  bool rigid = false;       ///< the body as one rigid body
+};
+
+std::vector<QuadDropSetting> quad_drop_settings(bool quick) {
+  std::vector<QuadDropSetting> settings;
+  for (double tol : quick ? std::vector<double>{1e-5} : std::vector<double>{1e-4, 1e-5, 1e-6}) {
     for (auto norm : {pr::ErrorNorm::kState, pr::ErrorNorm::kBody}) {
       settings.push_back({Method::kRodas4, tol, norm});
     }
@@ -790,7 +784,7 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
   // Verlet with the dissipation split: the regularised friction (mu N / v_s per unit foot
   // mass, ~1e6 1/s in stance) and the contact damper are implicit, so the step is limited by
   // the 1e5 N/m springs on the 10 g feet (omega ~ 3200 rad/s: h < 6e-4 s).
-  for (double h : c.quick ? std::vector<double>{5e-4} : std::vector<double>{5e-4, 2.5e-4, 1e-4}) {
+  for (double h : quick ? std::vector<double>{5e-4} : std::vector<double>{5e-4, 2.5e-4, 1e-4}) {
     settings.push_back({Method::kVerlet, h, pr::ErrorNorm::kState});
   }
   // Verlet with an energy budget: 5e-4 s steps, the impacts sub-stepped so that Verlet's
@@ -802,25 +796,108 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
   settings.push_back({Method::kRodas4, 1e-5, pr::ErrorNorm::kState, 0.0, true});
   settings.push_back({Method::kVerlet, 5e-4, pr::ErrorNorm::kState, 0.0, true});
   settings.push_back({Method::kVerlet, 5e-4, pr::ErrorNorm::kState, 1e-4, true});
-  // The reference for the apex heights: RODAS4 at tol 1e-8 (not timed).
-  auto apex_heights = [](const pr::Mechanism& m, const pr::RunSummary& r,
-                         std::vector<size_t>* index) {
-    // Body CoM height on the output grid; apexes are local maxima of z while the body moves
-    // up then down (refined by a parabola through three samples); only the body's flight
-    // apexes count (foot vibration makes tiny wiggles).
-    const pr::MechanismSystem sys(m);
-    std::vector<double> z, out;
-    for (const auto& y : r.y) z.push_back(sys.frames(y)[0].com.z());
-    for (size_t i = 1; i + 1 < z.size(); ++i) {
-      if (z[i] > z[i - 1] && z[i] >= z[i + 1] && z[i] > z.front() - 0.075) {
-        const double den = z[i - 1] - 2 * z[i] + z[i + 1];
-        const double off = den != 0 ? 0.5 * (z[i - 1] - z[i + 1]) / den : 0.0;
-        out.push_back(z[i] - 0.25 * (z[i - 1] - z[i + 1]) * off);
-        if (index != nullptr) index->push_back(i);
-      }
+  return settings;
+}
+
+std::vector<double> quad_drop_apex_heights(const pr::Mechanism& m, const pr::RunSummary& r,
+                                           std::vector<size_t>* index) {
+  // Body CoM height on the output grid; apexes are local maxima of z while the body moves
+  // up then down (refined by a parabola through three samples); only the body's flight
+  // apexes count (foot vibration makes tiny wiggles).
+  const pr::MechanismSystem sys(m);
+  std::vector<double> z, out;
+  for (const auto& y : r.y) z.push_back(sys.frames(y)[0].com.z());
+  for (size_t i = 1; i + 1 < z.size(); ++i) {
+    if (z[i] > z[i - 1] && z[i] >= z[i + 1] && z[i] > z.front() - 0.075) {
+      const double den = z[i - 1] - 2 * z[i] + z[i + 1];
+      const double off = den != 0 ? 0.5 * (z[i - 1] - z[i + 1]) / den : 0.0;
+      out.push_back(z[i] - 0.25 * (z[i - 1] - z[i + 1]) * off);
+      if (index != nullptr) index->push_back(i);
     }
-    return out;
-  };
+  }
+  return out;
+}
+
+/// One setting run and measured against the reference apex heights `ref`.
+nlohmann::json quad_drop_run(const QuadDropSetting& setting, pr::Mechanism m, double t_end,
+                             const std::vector<double>& ref) {
+  const double tol = setting.tol;
+  const pr::ErrorNorm norm = setting.norm;
+  m.simulation.solver.method = setting.method;
+  m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+  if (setting.method == Method::kVerlet) m.simulation.solver.h_fixed = tol;
+  m.simulation.energy_tol = setting.energy_tol;
+  m.simulation.error_norm = norm;
+  const double c0 = thread_cpu();
+  const pr::RunSummary r = pr::simulate(m);
+  const std::vector<double> cpus = {thread_cpu() - c0}, walls = {r.wall_time};
+  std::vector<size_t> at_apex;
+  const std::vector<double> a = quad_drop_apex_heights(m, r, &at_apex);
+  const double z0 = pr::MechanismSystem(m).frames(r.y.front())[0].com.z(), drop = 0.15;
+  // Energy balance at the flight apexes, where the forces on the feet are small: the
+  // hop-to-hop drift (case 6's criterion), without the transient of a fixed-step method
+  // inside an impact (Verlet: E - E_modified = h^2 |F|^2 / 8m, up to ~1e-1 J while a
+  // foot is stopped at h = 5e-4 s).
+  const double balance0 = r.energies.front().total();
+  double apex_balance = 0, apex_vs_ref = 0;
+  std::vector<double> ae;
+  for (size_t i : at_apex) {
+    ae.push_back(r.energies[i].total());
+    apex_balance = std::max(apex_balance, std::abs(r.energies[i].total() + r.dissipated[i] -
+                                                   r.actuator_work[i] - balance0));
+  }
+  for (size_t i = 0; i < a.size() && i < ref.size(); ++i) {
+    apex_vs_ref = std::max(apex_vs_ref, std::abs(a[i] - ref[i]) / drop);
+  }
+  double apex_err = 0;
+  for (double h : a) apex_err = std::max(apex_err, std::abs(h - z0) / drop);
+  const double e0 = r.energies.front().total();
+  // Energy reference: the drop energy m g h (mechanical energy above the state
+  // standing on the ground is not well defined in both tools; this is).
+  const double drop_energy = m.total_mass() * 9.81 * drop;
+  return {{"method", std::string(ode::to_string(setting.method))},
+          {"body", setting.rigid ? "rigid" : "four_masses"},
+          {"tol", setting.method == Method::kVerlet ? 0.0 : tol},
+          {"h", setting.method == Method::kVerlet ? tol : 0.0},
+          {"energy_tol", setting.energy_tol},
+          {"norm", norm == pr::ErrorNorm::kBody ? "body" : "state"},
+          {"t_end", t_end},
+          {"status", std::string(pr::to_string(r.status))},
+          {"wall_s", median(walls)},
+          {"cpu_s", median(cpus)},
+          {"cost_per_sim_s", median(cpus) / t_end},
+          {"steps", r.counters.steps_accepted},
+          {"rejected", r.counters.steps_rejected},
+          {"rhs", r.counters.rhs_evaluations},
+          {"jacobians", r.counters.jacobian_evaluations},
+          {"lu", r.counters.lu_factorizations},
+          {"energy_drift_rel", r.energy_drift / r.energy_scale},
+          {"energy_error_rel", r.energy_drift / drop_energy},
+          {"energy_error_apex_rel", apex_balance / drop_energy},
+          {"apex_height_vs_reference_rel", ref.empty() ? -1.0 : apex_vs_ref},
+          {"bounces", a.size()},
+          {"apex_heights_m", a},
+          {"apex_height_error_rel", apex_err},
+          {"first_bounce_energy_loss_rel", ae.empty() ? 0.0 : (e0 - ae.front()) / drop_energy},
+          {"max_strain", r.max_strain},
+          {"max_penetration_m", r.max_penetration}};
+}
+
+}  // namespace
+
+nlohmann::json quad_hopper_drop(const BenchConfig& c) {
+  const double t_end = c.quick ? 2.0 : 10.0;
+  const nlohmann::json doc = quad_hopper_mechanism(t_end);
+  const pr::Mechanism base = io::parse_mechanism(doc, "<quad_hopper_drop>").mechanism;
+  // The same hopper with its body as one rigid body (the mechanism's "rigid": true).
+  nlohmann::json doc_rigid = doc;
+  doc_rigid["bodies"][0]["rigid"] = true;
+  const pr::Mechanism base_rigid =
+      io::parse_mechanism(doc_rigid, "<quad_hopper_drop_rigid>").mechanism;
+  // 10 s of the drop costs seconds per run: each point is run once (c.repeat is
+  // not applied here), so the default bench stays within its budget.
+  const std::vector<QuadDropSetting> settings = quad_drop_settings(c.quick);
+  // The reference for the apex heights: RODAS4 at tol 1e-8 (not timed).
   // (The rigid rows against the rigid body's own reference: at 1e5 N/m the four-mass body
   // flexes by ~0.3 %, and the two differ by ~9 % of the drop in apex height.)
   std::vector<double> z_ref, z_ref_rigid;
@@ -830,76 +907,13 @@ nlohmann::json quad_hopper_drop(const BenchConfig& c) {
     if (!rigid) m.simulation.error_norm = pr::ErrorNorm::kBody;
     const pr::RunSummary r = pr::simulate(m);
     if (r.status == pr::RunStatus::kCompleted) {
-      (rigid ? z_ref_rigid : z_ref) = apex_heights(m, r, nullptr);
+      (rigid ? z_ref_rigid : z_ref) = quad_drop_apex_heights(m, r, nullptr);
     }
   }
   nlohmann::json out = nlohmann::json::array();
-  for (const Setting& setting : settings) {
-    {
-      const double tol = setting.tol;
-      const pr::ErrorNorm norm = setting.norm;
-      pr::Mechanism m = setting.rigid ? base_rigid : base;
-      m.simulation.solver.method = setting.method;
-      m.simulation.solver.rtol = m.simulation.solver.atol = tol;
-      if (setting.method == Method::kVerlet) m.simulation.solver.h_fixed = tol;
-      m.simulation.energy_tol = setting.energy_tol;
-      m.simulation.error_norm = norm;
-      const double c0 = thread_cpu();
-      const pr::RunSummary r = pr::simulate(m);
-      const std::vector<double> cpus = {thread_cpu() - c0}, walls = {r.wall_time};
-      std::vector<size_t> at_apex;
-      const std::vector<double> a = apex_heights(m, r, &at_apex);
-      const double z0 = pr::MechanismSystem(m).frames(r.y.front())[0].com.z(), drop = 0.15;
-      // Energy balance at the flight apexes, where the forces on the feet are small: the
-      // hop-to-hop drift (case 6's criterion), without the transient of a fixed-step method
-      // inside an impact (Verlet: E - E_modified = h^2 |F|^2 / 8m, up to ~1e-1 J while a
-      // foot is stopped at h = 5e-4 s).
-      const double balance0 = r.energies.front().total();
-      double apex_balance = 0, apex_vs_ref = 0;
-      std::vector<double> ae;
-      for (size_t i : at_apex) {
-        ae.push_back(r.energies[i].total());
-        apex_balance = std::max(apex_balance, std::abs(r.energies[i].total() + r.dissipated[i] -
-                                                       r.actuator_work[i] - balance0));
-      }
-      const std::vector<double>& ref = setting.rigid ? z_ref_rigid : z_ref;
-      for (size_t i = 0; i < a.size() && i < ref.size(); ++i) {
-        apex_vs_ref = std::max(apex_vs_ref, std::abs(a[i] - ref[i]) / drop);
-      }
-      double apex_err = 0;
-      for (double h : a) apex_err = std::max(apex_err, std::abs(h - z0) / drop);
-      const double e0 = r.energies.front().total();
-      // Energy reference: the drop energy m g h (mechanical energy above the state
-      // standing on the ground is not well defined in both tools; this is).
-      const double drop_energy = m.total_mass() * 9.81 * drop;
-      out.push_back(
-          {{"method", std::string(ode::to_string(setting.method))},
-           {"body", setting.rigid ? "rigid" : "four_masses"},
-           {"tol", setting.method == Method::kVerlet ? 0.0 : tol},
-           {"h", setting.method == Method::kVerlet ? tol : 0.0},
-           {"energy_tol", setting.energy_tol},
-           {"norm", norm == pr::ErrorNorm::kBody ? "body" : "state"},
-           {"t_end", t_end},
-           {"status", std::string(pr::to_string(r.status))},
-           {"wall_s", median(walls)},
-           {"cpu_s", median(cpus)},
-           {"cost_per_sim_s", median(cpus) / t_end},
-           {"steps", r.counters.steps_accepted},
-           {"rejected", r.counters.steps_rejected},
-           {"rhs", r.counters.rhs_evaluations},
-           {"jacobians", r.counters.jacobian_evaluations},
-           {"lu", r.counters.lu_factorizations},
-           {"energy_drift_rel", r.energy_drift / r.energy_scale},
-           {"energy_error_rel", r.energy_drift / drop_energy},
-           {"energy_error_apex_rel", apex_balance / drop_energy},
-           {"apex_height_vs_reference_rel", ref.empty() ? -1.0 : apex_vs_ref},
-           {"bounces", a.size()},
-           {"apex_heights_m", a},
-           {"apex_height_error_rel", apex_err},
-           {"first_bounce_energy_loss_rel", ae.empty() ? 0.0 : (e0 - ae.front()) / drop_energy},
-           {"max_strain", r.max_strain},
-           {"max_penetration_m", r.max_penetration}});
-    }
+  for (const QuadDropSetting& setting : settings) {
+    out.push_back(quad_drop_run(setting, setting.rigid ? base_rigid : base, t_end,
+                                setting.rigid ? z_ref_rigid : z_ref));
   }
   return out;
 }

@@ -47,7 +47,7 @@ int run_cli(int argc, const char* const* argv) {
     app.exit(e);
     return 2;
   }
-  try {
+  return run_reporting_errors([&] {
     // Every command's --out is checked before any work: a path that cannot be a
     // directory is bad input, not a failure after the run.
     for (const CLI::App* cmd : app.get_subcommands()) {
@@ -62,6 +62,13 @@ int run_cli(int argc, const char* const* argv) {
     if (map->parsed()) return run_map_command(map_args);
     if (view->parsed()) return run_view(view_args);
     if (bench->parsed()) return run_bench(bench_args);
+    return 2;
+  });
+}
+
+int run_reporting_errors(const std::function<int()>& body) {
+  try {
+    return body();
   } catch (const io::InputError& e) {
     std::cerr << "pronk: error: " << e.what() << "\n";
     return 2;
@@ -69,7 +76,6 @@ int run_cli(int argc, const char* const* argv) {
     std::cerr << "pronk: failed: " << e.what() << "\n";
     return 1;
   }
-  return 2;
 }
 
 }  // namespace pronk::app

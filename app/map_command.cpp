@@ -9,6 +9,7 @@
 #include <memory>
 #include <thread>
 
+#include "app/mpi_command.hpp"
 #include "app/view_command.hpp"
 #include "optimize/map/map_playback.hpp"
 #include "optimize/map/map_runner.hpp"
@@ -95,46 +96,26 @@ int run_map_command(const MapArgs& args) {
   g_map_stop.store(false);
 #ifdef PRONK_WITH_MPI
   if (m::mpi_launched()) {
-    m::MpiSession session;
-    std::unique_ptr<m::MapStudy> st;
-    try {
-      st = std::make_unique<m::MapStudy>(m::load_map_study(args.study_path, args.overrides));
-    } catch (const io::InputError& e) {
-      // Every rank reads the same file and fails the same way; rank 0 tells.
-      if (session.rank() == 0) std::cerr << "pronk: error: " << e.what() << "\n";
-      return 2;
-    }
-    if (session.rank() != 0) {
-      m::mpi_serve(*st);
-      return 0;
-    }
-    m::MpiRunner runner(session);
-    opt.runner = &runner;
-    opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
-    int rc = 0;
-    try {
-      std::signal(SIGINT, on_map_sigint);
-      const m::MapOutcome o = m::run_map(*st, opt);
-      std::signal(SIGINT, SIG_DFL);
-      rc = report(*st, o, runner.describe(), args.quiet);
-    } catch (const io::InputError& e) {
-      std::cerr << "pronk: error: " << e.what() << "\n";
-      rc = 2;
-    } catch (const std::exception& e) {
-      std::cerr << "pronk: failed: " << e.what() << "\n";
-      rc = 1;
-    }
-    runner.release_workers();
-    return rc;
-  }
-#else
-  if (m::mpi_launched()) {
-    // N copies would each compute the whole map and write the same files.
-    std::cerr << "pronk: error: started by mpirun with several ranks, but this pronk was built "
-                 "without MPI (install libopenmpi-dev and rebuild)\n";
-    return 2;
+    return run_on_mpi_ranks<m::MapStudy>(
+        [&] { return m::load_map_study(args.study_path, args.overrides); },
+        [](const m::MapStudy& st) { m::mpi_serve(st); },
+        [&](const m::MpiSession& session, const m::MapStudy& st) {
+          m::MpiRunner runner(session);
+          opt.runner = &runner;
+          opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+          const int rc = run_reporting_errors([&] {
+            std::signal(SIGINT, on_map_sigint);
+            const m::MapOutcome o = m::run_map(st, opt);
+            std::signal(SIGINT, SIG_DFL);
+            return report(st, o, runner.describe(), args.quiet);
+          });
+          runner.release_workers();
+          return rc;
+        });
   }
 #endif
+  // N copies would each compute the whole map and write the same files.
+  if (refuse_mpirun_without_mpi()) return 2;
   const m::MapStudy st = m::load_map_study(args.study_path, args.overrides);
   const unsigned hw = std::thread::hardware_concurrency();
   opt.threads = args.threads > 0 ? args.threads : (hw > 0 ? static_cast<int>(hw) : 1);

@@ -1,4 +1,5 @@
 #include "app/optimize_command.hpp"
+#include "app/mpi_command.hpp"
 #include "app/view_command.hpp"
 
 #include <unistd.h>
@@ -173,31 +174,14 @@ int run_loaded(const OptimizeArgs& args, const LoadedStudy& l, optimize::JobFarm
 // rank 0 telling); rank 0 runs it with the evaluations' jobs spread over the ranks.
 int run_optimize_mpi(const OptimizeArgs& args) {
   namespace mp = optimize::mpi;
-  mp::MpiSession session;
-  LoadedStudy l;
-  try {
-    l = load_any_study(args);
-  } catch (const io::InputError& e) {
-    if (session.rank() == 0) std::cerr << "pronk: error: " << e.what() << "\n";
-    return 2;
-  }
-  if (session.rank() != 0) {
-    mp::serve_evaluations();
-    return 0;
-  }
-  mp::MpiJobFarm farm(session);
-  int rc = 0;
-  try {
-    rc = run_loaded(args, l, &farm);
-  } catch (const io::InputError& e) {
-    std::cerr << "pronk: error: " << e.what() << "\n";
-    rc = 2;
-  } catch (const std::exception& e) {
-    std::cerr << "pronk: failed: " << e.what() << "\n";
-    rc = 1;
-  }
-  farm.release_workers();
-  return rc;
+  return run_on_mpi_ranks<LoadedStudy>(
+      [&] { return load_any_study(args); }, [](const LoadedStudy&) { mp::serve_evaluations(); },
+      [&](const mp::MpiSession& session, const LoadedStudy& l) {
+        mp::MpiJobFarm farm(session);
+        const int rc = run_reporting_errors([&] { return run_loaded(args, l, &farm); });
+        farm.release_workers();
+        return rc;
+      });
 }
 #endif
 
@@ -206,14 +190,9 @@ int run_optimize_mpi(const OptimizeArgs& args) {
 int run_optimize(const OptimizeArgs& args) {
 #ifdef PRONK_WITH_MPI
   if (optimize::mpi::mpi_launched()) return run_optimize_mpi(args);
-#else
-  if (optimize::mpi::mpi_launched()) {
-    // N copies would each run the whole study and write the same journal.
-    std::cerr << "pronk: error: started by mpirun with several ranks, but this pronk was built "
-                 "without MPI (install libopenmpi-dev and rebuild)\n";
-    return 2;
-  }
 #endif
+  // N copies would each run the whole study and write the same journal.
+  if (refuse_mpirun_without_mpi()) return 2;
   return run_loaded(args, load_any_study(args), nullptr);
 }
 

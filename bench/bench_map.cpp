@@ -184,6 +184,93 @@ bool same_outputs(const std::string& a, const std::string& b) {
   return true;
 }
 
+// Wall times and more, per configuration (one entry per repeat).
+using Timings = std::map<std::string, std::vector<double>>;
+
+// run_map in this process on 1 and 2 threads; returns the simulations of a map.
+long time_threads(const m::MapStudy& st, const std::string& dir, Timings& t) {
+  long simulations = 0;
+  for (int threads : {1, 2}) {
+    m::MapRunOptions opt;
+    opt.threads = threads;
+    opt.out_dir = dir + "/threads";
+    opt.figures = false;
+    const double t0 = now(), cpu0 = cpu_s(RUSAGE_SELF);
+    const m::MapOutcome o = m::run_map(st, opt);
+    const std::string key = "threads_" + std::to_string(threads);
+    t[key + "_s"].push_back(now() - t0);
+    t[key + "_cpu_s"].push_back(cpu_s(RUSAGE_SELF) - cpu0);
+    if (threads == 1) {
+      t["threads_1_cells_s"].push_back(o.cells_time);
+      t["threads_1_bisection_s"].push_back(o.bisection_time);
+      t["threads_1_output_s"].push_back(o.output_time);
+    }
+    simulations = o.simulations;
+  }
+  return simulations;
+}
+
+// pronk map on one thread, under mpirun on 1 and 2 ranks, and run_map under the MPI
+// runner (this executable as --mpi-child, timed inside rank 0).
+void time_mpi(const std::string& study_path, const std::string& dir, const std::string& pronk,
+              const std::string& self, Timings& t) {
+  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe ";
+  const std::string map_args = " map " + study_path + " -q --out " + dir;
+  const Command plain = run_command(pronk + map_args + "/plain --threads 1");
+  t["pronk_1_thread_s"].push_back(plain.wall);
+  for (int ranks : {1, 2}) {
+    const std::string np = "-np " + std::to_string(ranks) + " ";
+    const std::string key = ranks == 1 ? "1_rank" : "2_ranks";
+    // The command of issue 6 (one rank: pronk runs one thread and no MPI at all).
+    const Command job = run_command(mpirun + np + pronk + map_args + "/ranks" +
+                                    std::to_string(ranks) + (ranks == 1 ? " --threads 1" : ""));
+    t["mpirun_" + key + "_s"].push_back(job.wall);
+    t["mpirun_" + key + "_cpu_s"].push_back(job.cpu);
+    // run_map under the MPI runner, timed inside rank 0.
+    const Command child = run_command(mpirun + np + self + " --mpi-child " + study_path + " " +
+                                      dir + "/child" + std::to_string(ranks));
+    const json r0 = rank_line(child, 0);
+    t["mpi_map_" + key + "_s"].push_back(r0.value("map_s", 0.0));
+    if (ranks == 2) {
+      const json r1 = rank_line(child, 1);
+      t["mpi_init_s"].push_back(r0.value("init_s", 0.0));
+      t["mpi_map_2_ranks_cells_s"].push_back(r0.value("cells_s", 0.0));
+      t["mpi_map_2_ranks_bisection_s"].push_back(r0.value("bisection_s", 0.0));
+      t["mpi_map_2_ranks_output_s"].push_back(r0.value("output_s", 0.0));
+      t["rank0_tasks"].push_back(r0.value("tasks_local", 0.0));
+      t["chunks"].push_back(r0.value("chunks", 0.0));
+      t["largest_chunk"].push_back(r0.value("largest_chunk", 0.0));
+      t["worker_tasks"].push_back(r1.value("tasks", 0.0));
+      t["worker_compute_s"].push_back(r1.value("compute_s", 0.0));
+      t["worker_idle_s"].push_back(r1.value("idle_s", 0.0));
+      t["worker_total_s"].push_back(r1.value("total_s", 0.0));
+    }
+  }
+}
+
+// The medians, the speedups and the runs of the report.
+void add_ratios(Timings& t, bool mpi, const std::string& dir, json& out) {
+  for (const auto& [key, v] : t) out[key] = median(v);
+  auto ratio = [&](const char* a, const char* b) {
+    return t.count(a) && t.count(b) ? median(t[a]) / median(t[b]) : 0.0;
+  };
+  out["thread_speedup"] = ratio("threads_1_s", "threads_2_s");
+  out["threads_1_runs"] = t["threads_1_s"];
+  out["threads_2_runs"] = t["threads_2_s"];
+  if (mpi) {
+    out["mpirun_speedup"] = ratio("mpirun_1_rank_s", "mpirun_2_ranks_s");
+    out["mpirun_2_ranks_vs_pronk_1_thread"] = ratio("pronk_1_thread_s", "mpirun_2_ranks_s");
+    out["mpi_map_speedup"] = ratio("mpi_map_1_rank_s", "mpi_map_2_ranks_s");
+    out["mpi_map_2_ranks_vs_threads_1"] = ratio("threads_1_s", "mpi_map_2_ranks_s");
+    out["mpirun_1_rank_runs"] = t["mpirun_1_rank_s"];
+    out["mpirun_2_ranks_runs"] = t["mpirun_2_ranks_s"];
+    out["mpi_map_1_rank_runs"] = t["mpi_map_1_rank_s"];
+    out["mpi_map_2_ranks_runs"] = t["mpi_map_2_ranks_s"];
+    out["outputs_identical"] = same_outputs(dir + "/threads", dir + "/ranks2") &&
+                               same_outputs(dir + "/threads", dir + "/child2");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,62 +292,14 @@ int main(int argc, char** argv) {
   const m::MapStudy st = m::parse_map_study(doc, study_path, dir);
   const std::string here = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
   const std::string pronk = here + "/pronk", self = here + "/bench_map";
-  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe ";
   const bool mpi = m::mpi_built() && std::filesystem::exists(pronk);
 
-  std::map<std::string, std::vector<double>> t;  // wall times and more, per configuration
+  Timings t;
   long simulations = 0;
   const double load_before = load_average();
   for (int r = 0; r < repeats; ++r) {
-    for (int threads : {1, 2}) {
-      m::MapRunOptions opt;
-      opt.threads = threads;
-      opt.out_dir = dir + "/threads";
-      opt.figures = false;
-      const double t0 = now(), cpu0 = cpu_s(RUSAGE_SELF);
-      const m::MapOutcome o = m::run_map(st, opt);
-      const std::string key = "threads_" + std::to_string(threads);
-      t[key + "_s"].push_back(now() - t0);
-      t[key + "_cpu_s"].push_back(cpu_s(RUSAGE_SELF) - cpu0);
-      if (threads == 1) {
-        t["threads_1_cells_s"].push_back(o.cells_time);
-        t["threads_1_bisection_s"].push_back(o.bisection_time);
-        t["threads_1_output_s"].push_back(o.output_time);
-      }
-      simulations = o.simulations;
-    }
-    if (!mpi) continue;
-    const std::string map_args = " map " + study_path + " -q --out " + dir;
-    const Command plain = run_command(pronk + map_args + "/plain --threads 1");
-    t["pronk_1_thread_s"].push_back(plain.wall);
-    for (int ranks : {1, 2}) {
-      const std::string np = "-np " + std::to_string(ranks) + " ";
-      const std::string key = ranks == 1 ? "1_rank" : "2_ranks";
-      // The command of issue 6 (one rank: pronk runs one thread and no MPI at all).
-      const Command job = run_command(mpirun + np + pronk + map_args + "/ranks" +
-                                      std::to_string(ranks) + (ranks == 1 ? " --threads 1" : ""));
-      t["mpirun_" + key + "_s"].push_back(job.wall);
-      t["mpirun_" + key + "_cpu_s"].push_back(job.cpu);
-      // run_map under the MPI runner, timed inside rank 0.
-      const Command child = run_command(mpirun + np + self + " --mpi-child " + study_path + " " +
-                                        dir + "/child" + std::to_string(ranks));
-      const json r0 = rank_line(child, 0);
-      t["mpi_map_" + key + "_s"].push_back(r0.value("map_s", 0.0));
-      if (ranks == 2) {
-        const json r1 = rank_line(child, 1);
-        t["mpi_init_s"].push_back(r0.value("init_s", 0.0));
-        t["mpi_map_2_ranks_cells_s"].push_back(r0.value("cells_s", 0.0));
-        t["mpi_map_2_ranks_bisection_s"].push_back(r0.value("bisection_s", 0.0));
-        t["mpi_map_2_ranks_output_s"].push_back(r0.value("output_s", 0.0));
-        t["rank0_tasks"].push_back(r0.value("tasks_local", 0.0));
-        t["chunks"].push_back(r0.value("chunks", 0.0));
-        t["largest_chunk"].push_back(r0.value("largest_chunk", 0.0));
-        t["worker_tasks"].push_back(r1.value("tasks", 0.0));
-        t["worker_compute_s"].push_back(r1.value("compute_s", 0.0));
-        t["worker_idle_s"].push_back(r1.value("idle_s", 0.0));
-        t["worker_total_s"].push_back(r1.value("total_s", 0.0));
-      }
-    }
+    simulations = time_threads(st, dir, t);
+    if (mpi) time_mpi(study_path, dir, pronk, self, t);
   }
   json out = {{"benchmark", "map"},
               {"cells", st.cells()},
@@ -269,25 +308,7 @@ int main(int argc, char** argv) {
               {"simulations", simulations},
               {"repeats", repeats},
               {"load_average_before", load_before}};
-  for (const auto& [key, v] : t) out[key] = median(v);
-  auto ratio = [&](const char* a, const char* b) {
-    return t.count(a) && t.count(b) ? median(t[a]) / median(t[b]) : 0.0;
-  };
-  out["thread_speedup"] = ratio("threads_1_s", "threads_2_s");
-  out["threads_1_runs"] = t["threads_1_s"];
-  out["threads_2_runs"] = t["threads_2_s"];
-  if (mpi) {
-    out["mpirun_speedup"] = ratio("mpirun_1_rank_s", "mpirun_2_ranks_s");
-    out["mpirun_2_ranks_vs_pronk_1_thread"] = ratio("pronk_1_thread_s", "mpirun_2_ranks_s");
-    out["mpi_map_speedup"] = ratio("mpi_map_1_rank_s", "mpi_map_2_ranks_s");
-    out["mpi_map_2_ranks_vs_threads_1"] = ratio("threads_1_s", "mpi_map_2_ranks_s");
-    out["mpirun_1_rank_runs"] = t["mpirun_1_rank_s"];
-    out["mpirun_2_ranks_runs"] = t["mpirun_2_ranks_s"];
-    out["mpi_map_1_rank_runs"] = t["mpi_map_1_rank_s"];
-    out["mpi_map_2_ranks_runs"] = t["mpi_map_2_ranks_s"];
-    out["outputs_identical"] = same_outputs(dir + "/threads", dir + "/ranks2") &&
-                               same_outputs(dir + "/threads", dir + "/child2");
-  }
+  add_ratios(t, mpi, dir, out);
   out["load_average_after"] = load_average();
   std::error_code ec;
   std::filesystem::remove_all(dir, ec);

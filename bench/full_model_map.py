@@ -11,13 +11,9 @@ import argparse
 import json
 import os
 import shutil
-import statistics
-import subprocess
-import sys
 import tempfile
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from benchlib import ROOT, median, run_timed, write_json_atomic
 
 
 def study(cells):
@@ -54,12 +50,8 @@ def main():
     times, summary = [], None
     for r in range(a.repeat):
         out = os.path.join(tmp, "out%d" % r)
-        t0 = time.perf_counter()
-        p = subprocess.run([a.pronk, "map", path, "-q", "--threads", str(a.threads), "--out", out],
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        times.append(time.perf_counter() - t0)
-        if p.returncode != 0:
-            sys.exit("bench: pronk map failed (%d):\n%s" % (p.returncode, p.stderr))
+        times.append(run_timed([a.pronk, "map", path, "-q", "--threads", str(a.threads),
+                                "--out", out], what="pronk map"))
         with open(os.path.join(out, "summary.json")) as f:
             summary = json.load(f)
     shutil.rmtree(tmp)
@@ -68,17 +60,12 @@ def main():
         "threads": a.threads,
         "cores": os.cpu_count(),
         "runs": summary["totals"]["simulations"] if "simulations" in summary["totals"] else None,
-        "wall_s_median": statistics.median(times),
+        "wall_s_median": median(times),
         "wall_s": times,
         "target_s": 300,
         "stabilized_fraction": summary["totals"]["stabilized_fraction"],
     }
-    text = json.dumps(result, indent=2)
-    os.makedirs(os.path.dirname(a.out), exist_ok=True)
-    with open(a.out + ".tmp", "w") as f:
-        f.write(text + "\n")
-    os.replace(a.out + ".tmp", a.out)
-    print(text)
+    print(write_json_atomic(a.out, result))
 
 
 if __name__ == "__main__":

@@ -13,13 +13,10 @@ import argparse
 import json
 import os
 import shutil
-import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from benchlib import ROOT, median, run_timed, write_json_atomic
 
 
 def full_stage_study(evaluations):
@@ -32,15 +29,6 @@ def full_stage_study(evaluations):
         doc.pop(key, None)
     doc["optimizer"]["max_evaluations"] = evaluations
     return doc
-
-
-def run(cmd, env=None):
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    wall = time.perf_counter() - t0
-    if p.returncode != 0:
-        sys.exit("bench: %s failed (%d):\n%s" % (" ".join(cmd), p.returncode, p.stderr))
-    return wall
 
 
 def main():
@@ -70,7 +58,7 @@ def main():
             cmd = [a.pronk, "optimize", study, "-q", "--out", out] + extra
             if ranks is not None:
                 cmd = [mpirun, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
-            times.append(run(cmd))
+            times.append(run_timed(cmd))
             with open(os.path.join(out, "journal.jsonl"), "rb") as f:
                 journal = f.read()
             if reference is None:
@@ -78,7 +66,7 @@ def main():
             elif journal != reference:
                 sys.exit("bench: %s wrote a different journal" % name)
             shutil.rmtree(out)
-        rows.append({"workers": name, "ranks": ranks, "wall_s_median": statistics.median(times),
+        rows.append({"workers": name, "ranks": ranks, "wall_s_median": median(times),
                      "wall_s": times})
     base = rows[0]["wall_s_median"]
     for row in rows:
@@ -96,12 +84,7 @@ def main():
         "rows": rows,
     }
     shutil.rmtree(tmp)
-    text = json.dumps(result, indent=2)
-    os.makedirs(os.path.dirname(a.out), exist_ok=True)
-    with open(a.out + ".tmp", "w") as f:
-        f.write(text + "\n")
-    os.replace(a.out + ".tmp", a.out)
-    print(text)
+    print(write_json_atomic(a.out, result))
 
 
 if __name__ == "__main__":

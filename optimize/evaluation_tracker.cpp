@@ -269,30 +269,20 @@ std::shared_ptr<const PointRecord> FiniteDifferences::point(const double* x) {
   return insert(x, std::move(out[0]));
 }
 
-std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* x) {
-  std::shared_ptr<PointRecord> rec = find(x);
-  if (rec && rec->has_derivatives) return rec;
-
-  // Plan the stencil: per variable a forward (or backward, at the upper
-  // bound) point, or a central pair.
-  struct Plan {
-    int first = -1, second = -1;           ///< indices into the stencil batch (-1: none)
-    double d_first = 0.0, d_second = 0.0;  ///< exact offsets x' - x_j
-  };
-  std::vector<Plan> plan(static_cast<std::size_t>(n_));
-  std::vector<std::vector<double>> batch;
-  std::vector<const char*> purposes;
-  const std::vector<double> x0(x, x + n_);
-  if (!rec) {
-    batch.push_back(x0);
-    purposes.push_back("objective");
+FiniteDifferences::Stencil FiniteDifferences::plan_stencil(const std::vector<double>& x0,
+                                                           bool with_center) const {
+  Stencil st;
+  st.plan.resize(static_cast<std::size_t>(n_));
+  if (with_center) {
+    st.batch.push_back(x0);
+    st.purposes.push_back("objective");
   }
   auto add = [&](int j, double xj) {
     std::vector<double> p = x0;
     p[static_cast<std::size_t>(j)] = xj;
-    batch.push_back(std::move(p));
-    purposes.push_back("gradient");
-    return static_cast<int>(batch.size()) - 1;
+    st.batch.push_back(std::move(p));
+    st.purposes.push_back("gradient");
+    return static_cast<int>(st.batch.size()) - 1;
   };
   const bool central = options_.fd_scheme == "central";
   for (int j = 0; j < n_; ++j) {
@@ -303,30 +293,30 @@ std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* 
         (std::isfinite(lo) && std::isfinite(hi)) ? hi - lo : std::max(1.0, std::abs(xj));
     const double h = options_.fd_step * scale;
     if (central && xj - h >= lo && xj + h <= hi) {
-      plan[ju].first = add(j, xj + h);
-      plan[ju].d_first = (xj + h) - xj;
-      plan[ju].second = add(j, xj - h);
-      plan[ju].d_second = (xj - h) - xj;
+      st.plan[ju].first = add(j, xj + h);
+      st.plan[ju].d_first = (xj + h) - xj;
+      st.plan[ju].second = add(j, xj - h);
+      st.plan[ju].d_second = (xj - h) - xj;
       continue;
     }
     double xp = xj + h;
     if (xp > hi) xp = xj - h;
     if (xp < lo) xp = (hi - xj >= xj - lo) ? hi : lo;
     if (xp - xj == 0.0) continue;
-    plan[ju].first = add(j, xp);
-    plan[ju].d_first = xp - xj;
+    st.plan[ju].first = add(j, xp);
+    st.plan[ju].d_first = xp - xj;
   }
-  std::vector<ProblemEvaluation> out;
-  if (!tracker_.evaluate(batch, purposes, &out)) return nullptr;
-  if (!rec) rec = insert(x, out[0]);
+  return st;
+}
 
-  // Replace failed one-sided points by their mirror image when it is inside
-  // the bounds (one more batch); a central pair with one failure degrades to
-  // the successful side.
+bool FiniteDifferences::evaluate_mirrors(const std::vector<double>& x0,
+                                         const std::vector<StencilPlan>& plan,
+                                         const std::vector<ProblemEvaluation>& out,
+                                         std::vector<std::pair<int, double>>* mirror_of,
+                                         std::vector<ProblemEvaluation>* mirror_out) {
   std::vector<std::vector<double>> mirror;
-  std::vector<std::pair<int, double>> mirror_of;  // (variable, offset)
   for (int j = 0; j < n_; ++j) {
-    const Plan& p = plan[static_cast<std::size_t>(j)];
+    const StencilPlan& p = plan[static_cast<std::size_t>(j)];
     if (p.first < 0 || p.second >= 0 || out[static_cast<std::size_t>(p.first)].ok) continue;
     const double xq = x0[static_cast<std::size_t>(j)] - p.d_first;
     if (xq < lower_[static_cast<std::size_t>(j)] || xq > upper_[static_cast<std::size_t>(j)])
@@ -334,15 +324,16 @@ std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* 
     std::vector<double> q = x0;
     q[static_cast<std::size_t>(j)] = xq;
     mirror.push_back(std::move(q));
-    mirror_of.emplace_back(j, xq - x0[static_cast<std::size_t>(j)]);
+    mirror_of->emplace_back(j, xq - x0[static_cast<std::size_t>(j)]);
   }
-  std::vector<ProblemEvaluation> mirror_out;
-  if (!mirror.empty()) {
-    if (!tracker_.evaluate(mirror, std::vector<const char*>(mirror.size(), "gradient"),
-                           &mirror_out))
-      return nullptr;
-  }
+  if (mirror.empty()) return true;
+  return tracker_.evaluate(mirror, std::vector<const char*>(mirror.size(), "gradient"), mirror_out);
+}
 
+void FiniteDifferences::difference(PointRecord* rec, const std::vector<StencilPlan>& plan,
+                                   const std::vector<ProblemEvaluation>& out,
+                                   const std::vector<std::pair<int, double>>& mirror_of,
+                                   const std::vector<ProblemEvaluation>& mirror_out) const {
   const ProblemEvaluation& e0 = rec->eval;
   const double f0 = value_(e0);
   const auto mu = static_cast<std::size_t>(m_);
@@ -359,7 +350,7 @@ std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* 
   std::size_t next_mirror = 0;
   for (int j = 0; j < n_; ++j) {
     const auto ju = static_cast<std::size_t>(j);
-    const Plan& p = plan[ju];
+    const StencilPlan& p = plan[ju];
     if (p.first < 0) continue;
     const ProblemEvaluation& a = out[static_cast<std::size_t>(p.first)];
     if (p.second >= 0) {
@@ -390,6 +381,25 @@ std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* 
       rec->derivatives_ok = false;
     }
   }
+}
+
+std::shared_ptr<const PointRecord> FiniteDifferences::derivatives(const double* x) {
+  std::shared_ptr<PointRecord> rec = find(x);
+  if (rec && rec->has_derivatives) return rec;
+  // Plan the stencil: per variable a forward (or backward, at the upper
+  // bound) point, or a central pair.
+  const std::vector<double> x0(x, x + n_);
+  const Stencil st = plan_stencil(x0, !rec);
+  std::vector<ProblemEvaluation> out;
+  if (!tracker_.evaluate(st.batch, st.purposes, &out)) return nullptr;
+  if (!rec) rec = insert(x, out[0]);
+  // Replace failed one-sided points by their mirror image when it is inside
+  // the bounds (one more batch); a central pair with one failure degrades to
+  // the successful side.
+  std::vector<std::pair<int, double>> mirror_of;  // (variable, offset)
+  std::vector<ProblemEvaluation> mirror_out;
+  if (!evaluate_mirrors(x0, st.plan, out, &mirror_of, &mirror_out)) return nullptr;
+  difference(rec.get(), st.plan, out, mirror_of, mirror_out);
   rec->has_derivatives = true;
   return rec;
 }

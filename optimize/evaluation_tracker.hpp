@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "optimize/optimizer.hpp"
@@ -137,6 +138,30 @@ class FiniteDifferences {
  private:
   std::shared_ptr<PointRecord> find(const double* x);
   std::shared_ptr<PointRecord> insert(const double* x, ProblemEvaluation e);
+
+  /// A variable's stencil points: indices into the batch (-1: none) and exact offsets x' - x_j.
+  struct StencilPlan {
+    int first = -1, second = -1;
+    double d_first = 0.0, d_second = 0.0;
+  };
+  struct Stencil {
+    std::vector<StencilPlan> plan;  ///< per variable
+    std::vector<std::vector<double>> batch;
+    std::vector<const char*> purposes;
+  };
+  /// The stencil around x0 (with x0 itself first when with_center).
+  Stencil plan_stencil(const std::vector<double>& x0, bool with_center) const;
+  /// Evaluates the mirror images of failed one-sided points that lie inside the bounds;
+  /// false when the tracker refused.
+  bool evaluate_mirrors(const std::vector<double>& x0, const std::vector<StencilPlan>& plan,
+                        const std::vector<ProblemEvaluation>& out,
+                        std::vector<std::pair<int, double>>* mirror_of,
+                        std::vector<ProblemEvaluation>* mirror_out);
+  /// The gradient and Jacobian of rec from the stencil's evaluations.
+  void difference(PointRecord* rec, const std::vector<StencilPlan>& plan,
+                  const std::vector<ProblemEvaluation>& out,
+                  const std::vector<std::pair<int, double>>& mirror_of,
+                  const std::vector<ProblemEvaluation>& mirror_out) const;
 
   EvaluationTracker& tracker_;
   const OptimizerOptions& options_;

@@ -187,6 +187,131 @@ bool nlopt_needs_local_algorithm(const std::string& name) {
          id == NLOPT_G_MLSL_LDS;
 }
 
+namespace {
+
+/// The nonlinear constraints: NLopt's own when the algorithm takes them, else a penalty
+/// (result->constraints_as_penalty). Returns an error message, or "".
+std::string nlopt_add_constraints(nlopt_opt opt, int m, const OptimizerOptions& options,
+                                  Context* ctx, OptimizerResult* result) {
+  if (m <= 0) return "";
+  const std::vector<double> tol(static_cast<std::size_t>(m), 0.0);
+  if (nlopt_supports_inequality_constraints(options.algorithm)) {
+    if (nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(m), &constraints, ctx,
+                                         tol.data()) != NLOPT_SUCCESS) {
+      return std::string("nlopt_add_inequality_mconstraint: ") + nlopt_get_errmsg(opt);
+    }
+  } else {
+    result->constraints_as_penalty = true;
+  }
+  return "";
+}
+
+/// The local optimizer of AUGLAG and MLSL. Returns an error message, or "".
+std::string nlopt_add_local_optimizer(nlopt_opt opt, int n, const OptimizerOptions& options,
+                                      OptimizerResult* result) {
+  if (!nlopt_needs_local_algorithm(options.algorithm)) return "";
+  const int local_id = algorithm_id(options.local_algorithm);
+  if (local_id < 0) return "unknown NLopt local algorithm '" + options.local_algorithm + "'";
+  OptPtr local(nlopt_create(static_cast<nlopt_algorithm>(local_id), static_cast<unsigned>(n)));
+  if (!local) return "nlopt_create failed for " + options.local_algorithm;
+  set_tolerances(local.get(), options);
+  if (nlopt_set_local_optimizer(opt, local.get()) != NLOPT_SUCCESS)
+    return std::string("nlopt_set_local_optimizer: ") + nlopt_get_errmsg(opt);
+  append(&result->message, "local algorithm " + options.local_algorithm);
+  return "";
+}
+
+/// How nlopt_optimize ended, after the restarts that re-check a convergence claim.
+struct NloptOutcome {
+  nlopt_result r = NLOPT_FAILURE;
+  int restarts = 0;
+  long tainted_in_last_run = 0;
+};
+
+NloptOutcome nlopt_optimize_checked(nlopt_opt opt, int id, const OptimizerOptions& options,
+                                    const EvaluationTracker& tracker, const Context& ctx,
+                                    std::vector<double>* x) {
+  NloptOutcome out;
+  nlopt_srand(static_cast<unsigned long>(options.seed));  // reproducible random algorithms
+  double minf = 0.0;
+  long tainted_before = ctx.tainted;
+  out.r = nlopt_optimize(opt, x->data(), &minf);
+  // A failed evaluation reaches NLopt as a (lifted) high value, which can
+  // corrupt a model (BOBYQA, a finite-difference gradient, ...) into
+  // claiming convergence at a wrong point. A local algorithm's claim made
+  // after NLopt used such values is re-checked by restarting from the best
+  // successful point with the remaining budget; a claim is trusted only from
+  // a run in which NLopt saw no value derived from a failed evaluation.
+  const bool local = options.algorithm.rfind("LN_", 0) == 0 ||
+                     options.algorithm.rfind("LD_", 0) == 0 || id == NLOPT_AUGLAG ||
+                     id == NLOPT_AUGLAG_EQ;
+  while (local && map_result(out.r) == OptimizerStatus::kConverged && !tracker.stopped() &&
+         ctx.tainted > tainted_before && out.restarts < kMaxRestarts && !tracker.best_x().empty() &&
+         tracker.evaluations() < options.max_evaluations) {
+    ++out.restarts;
+    tainted_before = ctx.tainted;
+    *x = tracker.best_x();
+    nlopt_set_maxeval(opt, static_cast<int>(std::min<long>(
+                               options.max_evaluations - tracker.evaluations(), INT_MAX)));
+    if (options.max_time > 0.0)
+      nlopt_set_maxtime(opt, std::max(1e-3, options.max_time - tracker.elapsed()));
+    out.r = nlopt_optimize(opt, x->data(), &minf);
+  }
+  out.tainted_in_last_run = ctx.tainted - tainted_before;
+  return out;
+}
+
+/// The status and message of a finished run (x: where NLopt ended).
+void nlopt_report(nlopt_opt opt, const NloptOutcome& out, const OptimizerOptions& options,
+                  EvaluationTracker& tracker, const std::vector<double>& x,
+                  OptimizerResult* result) {
+  const nlopt_result r = out.r;
+  result->library_status = result_text(r);
+  std::string lib = "NLopt: " + result->library_status;
+  if (r < 0 && r != NLOPT_FORCED_STOP) {
+    const char* msg = nlopt_get_errmsg(opt);
+    if (msg != nullptr && *msg != '\0') lib += std::string(" (") + msg + ")";
+  }
+  result->status = map_result(r);
+  result->message = lib + (result->message.empty() ? "" : "; " + result->message);
+  tracker.apply_stop_cause(result);
+  if (r == NLOPT_FAILURE && tracker.stop_cause() == StopCause::kNone) {
+    OptimizerResult counts;
+    tracker.fill(&counts);
+    if (counts.gradient_evaluations > 0)
+      append(&result->message,
+             "a gradient-based NLopt algorithm ending with FAILURE usually means the "
+             "finite-difference gradient noise exceeds the tolerances (try fd_scheme "
+             "\"central\", a larger fd_step or looser xtol_rel/ftol_rel)");
+  }
+  if (out.restarts > 0)
+    append(&result->message, std::to_string(out.restarts) +
+                                 " restart(s) from the best point to re-check a convergence "
+                                 "claim made while evaluations failed");
+  if (result->status == OptimizerStatus::kConverged && out.tainted_in_last_run > 0) {
+    result->status = OptimizerStatus::kFailed;
+    append(&result->message, "convergence not trusted: NLopt used " +
+                                 std::to_string(out.tainted_in_last_run) +
+                                 " value(s) or gradient(s) from failed evaluations during the "
+                                 "final run (they can corrupt its model); the best successful "
+                                 "point is reported");
+  }
+  if (result->status == OptimizerStatus::kConverged && tracker.failed_point(x)) {
+    result->status = OptimizerStatus::kFailed;
+    append(&result->message,
+           "NLopt ended at a point whose evaluation failed; the best successful point is "
+           "reported");
+  }
+  if (result->constraints_as_penalty) {
+    append(&result->message, options.algorithm +
+                                 " does not take nonlinear constraints: they were added to the "
+                                 "cost as a quadratic penalty (weight " +
+                                 std::to_string(options.penalty_weight) + ")");
+  }
+}
+
+}  // namespace
+
 OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& options,
                           EvaluationObserver* observer) {
   OptimizerResult result;
@@ -216,19 +341,9 @@ OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& option
     ctx.tracker = &tracker;
     if (nlopt_set_min_objective(opt.get(), &objective, &ctx) != NLOPT_SUCCESS)
       return fail(std::string("nlopt_set_min_objective: ") + nlopt_get_errmsg(opt.get()));
-
-    if (m > 0) {
-      const std::vector<double> tol(static_cast<std::size_t>(m), 0.0);
-      if (nlopt_supports_inequality_constraints(options.algorithm)) {
-        if (nlopt_add_inequality_mconstraint(opt.get(), static_cast<unsigned>(m), &constraints,
-                                             &ctx, tol.data()) != NLOPT_SUCCESS) {
-          return fail(std::string("nlopt_add_inequality_mconstraint: ") +
-                      nlopt_get_errmsg(opt.get()));
-        }
-      } else {
-        result.constraints_as_penalty = true;
-      }
-    }
+    if (const std::string err = nlopt_add_constraints(opt.get(), m, options, &ctx, &result);
+        !err.empty())
+      return fail(err);
     const bool penalty = result.constraints_as_penalty;
     const double weight = options.penalty_weight;
     FiniteDifferences fd(tracker, problem, options,
@@ -241,18 +356,9 @@ OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& option
                            return v;
                          });
     ctx.fd = &fd;
-
-    if (nlopt_needs_local_algorithm(options.algorithm)) {
-      const int local_id = algorithm_id(options.local_algorithm);
-      if (local_id < 0)
-        return fail("unknown NLopt local algorithm '" + options.local_algorithm + "'");
-      OptPtr local(nlopt_create(static_cast<nlopt_algorithm>(local_id), static_cast<unsigned>(n)));
-      if (!local) return fail("nlopt_create failed for " + options.local_algorithm);
-      set_tolerances(local.get(), options);
-      if (nlopt_set_local_optimizer(opt.get(), local.get()) != NLOPT_SUCCESS)
-        return fail(std::string("nlopt_set_local_optimizer: ") + nlopt_get_errmsg(opt.get()));
-      append(&result.message, "local algorithm " + options.local_algorithm);
-    }
+    if (const std::string err = nlopt_add_local_optimizer(opt.get(), n, options, &result);
+        !err.empty())
+      return fail(err);
 
     set_tolerances(opt.get(), options);
     nlopt_set_maxeval(opt.get(),
@@ -260,76 +366,8 @@ OptimizerResult run_nlopt(const Problem& problem, const OptimizerOptions& option
     if (options.max_time > 0.0) nlopt_set_maxtime(opt.get(), options.max_time);
 
     std::vector<double> x = problem.initial_point();
-    nlopt_srand(static_cast<unsigned long>(options.seed));  // reproducible random algorithms
-    double minf = 0.0;
-    long tainted_before = ctx.tainted;
-    nlopt_result r = nlopt_optimize(opt.get(), x.data(), &minf);
-    // A failed evaluation reaches NLopt as a (lifted) high value, which can
-    // corrupt a model (BOBYQA, a finite-difference gradient, ...) into
-    // claiming convergence at a wrong point. A local algorithm's claim made
-    // after NLopt used such values is re-checked by restarting from the best
-    // successful point with the remaining budget; a claim is trusted only from
-    // a run in which NLopt saw no value derived from a failed evaluation.
-    const bool local = options.algorithm.rfind("LN_", 0) == 0 ||
-                       options.algorithm.rfind("LD_", 0) == 0 || id == NLOPT_AUGLAG ||
-                       id == NLOPT_AUGLAG_EQ;
-    int restarts = 0;
-    while (local && map_result(r) == OptimizerStatus::kConverged && !tracker.stopped() &&
-           ctx.tainted > tainted_before && restarts < kMaxRestarts && !tracker.best_x().empty() &&
-           tracker.evaluations() < options.max_evaluations) {
-      ++restarts;
-      tainted_before = ctx.tainted;
-      x = tracker.best_x();
-      nlopt_set_maxeval(opt.get(), static_cast<int>(std::min<long>(
-                                       options.max_evaluations - tracker.evaluations(), INT_MAX)));
-      if (options.max_time > 0.0)
-        nlopt_set_maxtime(opt.get(), std::max(1e-3, options.max_time - tracker.elapsed()));
-      r = nlopt_optimize(opt.get(), x.data(), &minf);
-    }
-    const long tainted_in_last_run = ctx.tainted - tainted_before;
-
-    result.library_status = result_text(r);
-    std::string lib = "NLopt: " + result.library_status;
-    if (r < 0 && r != NLOPT_FORCED_STOP) {
-      const char* msg = nlopt_get_errmsg(opt.get());
-      if (msg != nullptr && *msg != '\0') lib += std::string(" (") + msg + ")";
-    }
-    result.status = map_result(r);
-    result.message = lib + (result.message.empty() ? "" : "; " + result.message);
-    tracker.apply_stop_cause(&result);
-    if (r == NLOPT_FAILURE && tracker.stop_cause() == StopCause::kNone) {
-      OptimizerResult counts;
-      tracker.fill(&counts);
-      if (counts.gradient_evaluations > 0)
-        append(&result.message,
-               "a gradient-based NLopt algorithm ending with FAILURE usually means the "
-               "finite-difference gradient noise exceeds the tolerances (try fd_scheme "
-               "\"central\", a larger fd_step or looser xtol_rel/ftol_rel)");
-    }
-    if (restarts > 0)
-      append(&result.message, std::to_string(restarts) +
-                                  " restart(s) from the best point to re-check a convergence "
-                                  "claim made while evaluations failed");
-    if (result.status == OptimizerStatus::kConverged && tainted_in_last_run > 0) {
-      result.status = OptimizerStatus::kFailed;
-      append(&result.message, "convergence not trusted: NLopt used " +
-                                  std::to_string(tainted_in_last_run) +
-                                  " value(s) or gradient(s) from failed evaluations during the "
-                                  "final run (they can corrupt its model); the best successful "
-                                  "point is reported");
-    }
-    if (result.status == OptimizerStatus::kConverged && tracker.failed_point(x)) {
-      result.status = OptimizerStatus::kFailed;
-      append(&result.message,
-             "NLopt ended at a point whose evaluation failed; the best successful point is "
-             "reported");
-    }
-    if (penalty) {
-      append(&result.message, options.algorithm +
-                                  " does not take nonlinear constraints: they were added to the "
-                                  "cost as a quadratic penalty (weight " +
-                                  std::to_string(weight) + ")");
-    }
+    const NloptOutcome out = nlopt_optimize_checked(opt.get(), id, options, tracker, ctx, &x);
+    nlopt_report(opt.get(), out, options, tracker, x, &result);
   } catch (const std::exception& e) {
     tracker.fail(&result, std::string("NLopt driver: ") + e.what());
   } catch (...) {

@@ -1,5 +1,6 @@
 #include "optimize/study.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -190,19 +191,8 @@ json read_study_scene(io::JsonReader& r, const json& doc, const std::string& fil
   return sv;
 }
 
-Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
-  Study st;
-  st.file = file;
-  st.document = doc;
-  io::JsonReader r(doc, file, "");
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos) {
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
-  }
-  r.string_or("description", "");
-  // The scene: a path (relative to the study file) or an inline object, plus overrides.
-  std::string scene_file;
-  json scene_doc = read_study_scene(r, doc, file, base_dir, &scene_file);
+void apply_study_scene_overrides(io::JsonReader& r, const json& doc, const std::string& file,
+                                 json* scene_doc) {
   if (r.has("scene_overrides")) {
     const json& ov = doc.at("scene_overrides");
     r.optional("scene_overrides");
@@ -213,56 +203,40 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
         throw io::InputError(file, "/scene_overrides/" + std::to_string(i),
                              "a \"/ptr=value\" string", io::describe(ov[i]));
       }
-      io::apply_override(scene_doc, ov[i].get<std::string>());
+      io::apply_override(*scene_doc, ov[i].get<std::string>());
     }
   } else {
     r.optional("scene_overrides");
   }
-  // A study-level "model" runs every scenario in that model, whatever the scene says.
-  if (r.has("model")) {
-    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
-  } else {
-    r.optional("model");
-  }
-  // The scene must be valid as given (its errors name the scene file).
-  const scene::Scene scene0 = io::parse_scene(scene_doc, scene_file);
-  EvaluatorConfig& ec = st.evaluator;
-  // Parameters bind into the resolved scene, where every number is explicit.
-  const json resolved = io::scene_to_json(scene0);
-  ec.scene_doc = resolved;
-  ec.scene_file = scene_file;
+}
 
-  // Parameters.
+namespace {
+
+// Parameters bind into the resolved scene (every number explicit) and must leave a valid scene.
+void parse_study_parameters(io::JsonReader& r, const scene::Scene& scene0, const json& resolved,
+                            EvaluatorConfig* ec) {
   const std::vector<std::string> unused = io::unused_settings(scene0);
   for (io::JsonReader p : r.object_array("parameters")) {
     Parameter par = parse_parameter(p, resolved, unused, scene0.model);
-    ec.scene_doc[json::json_pointer(par.pointer)] = par.initial;
-    ec.parameters.push_back(par);
+    ec->scene_doc[json::json_pointer(par.pointer)] = par.initial;
+    ec->parameters.push_back(par);
   }
-  if (ec.parameters.empty()) throw r.error("parameters", "at least one parameter", "an empty list");
-  {
-    std::vector<std::string> names;
-    for (const auto& p : ec.parameters) {
-      if (std::find(names.begin(), names.end(), p.name) != names.end()) {
-        throw r.error("parameters", "distinct parameter names", "\"" + p.name + "\" twice");
-      }
-      names.push_back(p.name);
+  if (ec->parameters.empty())
+    throw r.error("parameters", "at least one parameter", "an empty list");
+  std::vector<std::string> names;
+  for (const auto& p : ec->parameters) {
+    if (std::find(names.begin(), names.end(), p.name) != names.end()) {
+      throw r.error("parameters", "distinct parameter names", "\"" + p.name + "\" twice");
     }
+    names.push_back(p.name);
   }
   // The bound document must still be a valid scene (e.g. a pointer that adds an unknown key).
-  io::parse_scene(ec.scene_doc, scene_file);
+  io::parse_scene(ec->scene_doc, ec->scene_file);
+}
 
-  // Scenarios, and the optional held-out validation set.
-  parse_scenario_set(r.object("scenarios"), ec.scenarios);
-  if (r.has("validation")) {
-    ScenarioSet v;
-    parse_scenario_set(r.object("validation"), v);
-    st.validation = v;
-  } else {
-    r.optional("validation");
-  }
-
-  // Objective and constraints.
+// Objective terms and constraints, their metrics checked against the study's model.
+void parse_study_objective(io::JsonReader& r, const std::string& file, scene::ModelKind model,
+                           EvaluatorConfig* ec) {
   for (io::JsonReader t : r.object_array("objective")) {
     ObjectiveTerm term;
     term.metric = metric_of(t);
@@ -270,9 +244,9 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
     term.how = parse_aggregate(t, "mean");
     term.alpha = t.number_or("alpha", 0.2, 1e-6, 1.0);
     t.finish();
-    ec.objective.push_back(term);
+    ec->objective.push_back(term);
   }
-  if (ec.objective.empty())
+  if (ec->objective.empty())
     throw r.error("objective", "at least one objective term", "an empty list");
   if (r.has("constraints")) {
     for (io::JsonReader c : r.object_array("constraints")) {
@@ -289,22 +263,93 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
       c.optional("max");
       c.optional("min");
       c.finish();
-      ec.constraints.push_back(cs);
+      ec->constraints.push_back(cs);
     }
   } else {
     r.optional("constraints");
   }
   // A metric only the full model reports is an error in a reduced-model study.
   auto check_metric = [&](const std::string& at, const std::string& m) {
-    if (is_metric(m, scene0.model)) return;
-    throw io::InputError(
-        file, at, "a metric the " + std::string(scene::to_string(scene0.model)) + " model reports",
-        "\"" + m + "\" (only the pseudo_rigid model reports it)");
+    if (is_metric(m, model)) return;
+    throw io::InputError(file, at,
+                         "a metric the " + std::string(scene::to_string(model)) + " model reports",
+                         "\"" + m + "\" (only the pseudo_rigid model reports it)");
   };
-  for (size_t i = 0; i < ec.objective.size(); ++i)
-    check_metric("/objective/" + std::to_string(i) + "/metric", ec.objective[i].metric);
-  for (size_t i = 0; i < ec.constraints.size(); ++i)
-    check_metric("/constraints/" + std::to_string(i) + "/metric", ec.constraints[i].metric);
+  for (size_t i = 0; i < ec->objective.size(); ++i)
+    check_metric("/objective/" + std::to_string(i) + "/metric", ec->objective[i].metric);
+  for (size_t i = 0; i < ec->constraints.size(); ++i)
+    check_metric("/constraints/" + std::to_string(i) + "/metric", ec->constraints[i].metric);
+}
+
+void parse_study_optimizer(io::JsonReader o, const json& doc, const std::string& file,
+                           OptimizerOptions* op) {
+  op->library = o.choice_or("library", "nlopt", {"nlopt", "ipopt"});
+  op->algorithm = o.string_or("algorithm", op->library == "ipopt" ? "ipopt" : "LN_BOBYQA");
+  op->local_algorithm = o.string_or("local_algorithm", op->local_algorithm);
+  op->max_evaluations = o.integer_or("max_evaluations", op->max_evaluations, 1, 100000000);
+  op->max_time = o.number_or("max_time", 0.0, 0.0, 1e9);
+  op->ftol_rel = o.number_or("ftol_rel", op->ftol_rel, 0.0, 1.0);
+  op->xtol_rel = o.number_or("xtol_rel", op->xtol_rel, 0.0, 1.0);
+  op->seed = static_cast<unsigned long long>(o.integer_or("seed", 1, 0, 9007199254740991L));
+  op->penalty_weight = o.number_or("penalty_weight", op->penalty_weight, 0.0, 1e12);
+  op->fd_step = o.number_or("fd_step", op->fd_step, 1e-12, 0.1);
+  if (o.has("options")) {
+    const json& opts = doc.at("optimizer").at("options");
+    o.optional("options");
+    if (!opts.is_object())
+      throw o.error("options", "an object of Ipopt options", io::describe(opts));
+    op->ipopt_options = opts;
+  } else {
+    o.optional("options");
+  }
+  o.finish();
+  std::string err;
+  if (!op->validate(&err)) {
+    const std::string field = err.substr(0, err.find(':'));
+    throw io::InputError(file, "/optimizer/" + field, "valid optimizer options", err);
+  }
+}
+
+}  // namespace
+
+Study parse_study(const json& doc, const std::string& file, const std::string& base_dir) {
+  Study st;
+  st.file = file;
+  st.document = doc;
+  io::JsonReader r(doc, file, "");
+  st.name = r.string_or("name", "");
+  if (st.name.empty() || st.name.find('/') != std::string::npos) {
+    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  }
+  r.string_or("description", "");
+  // The scene: a path (relative to the study file) or an inline object, plus overrides.
+  std::string scene_file;
+  json scene_doc = read_study_scene(r, doc, file, base_dir, &scene_file);
+  apply_study_scene_overrides(r, doc, file, &scene_doc);
+  // A study-level "model" runs every scenario in that model, whatever the scene says.
+  if (r.has("model")) {
+    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+  } else {
+    r.optional("model");
+  }
+  // The scene must be valid as given (its errors name the scene file).
+  const scene::Scene scene0 = io::parse_scene(scene_doc, scene_file);
+  EvaluatorConfig& ec = st.evaluator;
+  const json resolved = io::scene_to_json(scene0);
+  ec.scene_doc = resolved;
+  ec.scene_file = scene_file;
+  parse_study_parameters(r, scene0, resolved, &ec);
+
+  // Scenarios, and the optional held-out validation set.
+  parse_scenario_set(r.object("scenarios"), ec.scenarios);
+  if (r.has("validation")) {
+    ScenarioSet v;
+    parse_scenario_set(r.object("validation"), v);
+    st.validation = v;
+  } else {
+    r.optional("validation");
+  }
+  parse_study_objective(r, file, scene0.model, &ec);
   ec.stability = r.boolean_or("stability", true);
   if (ec.stability && scene0.model == scene::ModelKind::kPseudoRigid &&
       !scene0.pseudo_rigid.actuators) {
@@ -313,35 +358,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
                   "true, with /pseudo_rigid/actuators false");
   }
   ec.fall_penalty = r.positive_or("fall_penalty", 1.0);
-
-  // Optimizer.
-  io::JsonReader o = r.object("optimizer");
-  OptimizerOptions& op = st.optimizer;
-  op.library = o.choice_or("library", "nlopt", {"nlopt", "ipopt"});
-  op.algorithm = o.string_or("algorithm", op.library == "ipopt" ? "ipopt" : "LN_BOBYQA");
-  op.local_algorithm = o.string_or("local_algorithm", op.local_algorithm);
-  op.max_evaluations = o.integer_or("max_evaluations", op.max_evaluations, 1, 100000000);
-  op.max_time = o.number_or("max_time", 0.0, 0.0, 1e9);
-  op.ftol_rel = o.number_or("ftol_rel", op.ftol_rel, 0.0, 1.0);
-  op.xtol_rel = o.number_or("xtol_rel", op.xtol_rel, 0.0, 1.0);
-  op.seed = static_cast<unsigned long long>(o.integer_or("seed", 1, 0, 9007199254740991L));
-  op.penalty_weight = o.number_or("penalty_weight", op.penalty_weight, 0.0, 1e12);
-  op.fd_step = o.number_or("fd_step", op.fd_step, 1e-12, 0.1);
-  if (o.has("options")) {
-    const json& opts = doc.at("optimizer").at("options");
-    o.optional("options");
-    if (!opts.is_object())
-      throw o.error("options", "an object of Ipopt options", io::describe(opts));
-    op.ipopt_options = opts;
-  } else {
-    o.optional("options");
-  }
-  o.finish();
-  std::string err;
-  if (!op.validate(&err)) {
-    const std::string field = err.substr(0, err.find(':'));
-    throw io::InputError(file, "/optimizer/" + field, "valid optimizer options", err);
-  }
+  parse_study_optimizer(r.object("optimizer"), doc, file, &st.optimizer);
   st.output_dir = r.string_or("output", "results/" + st.name);
   r.finish();
   st.hash = fnv1a_hex(doc.dump() + "\n" + resolved.dump());

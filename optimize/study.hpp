@@ -42,6 +42,11 @@ nlohmann::json read_study_scene(io::JsonReader& r, const nlohmann::json& doc,
                                 const std::string& file, const std::string& base_dir,
                                 std::string* scene_file);
 
+/// Applies the study's optional "scene_overrides" (an array of "/ptr=value" strings, read by
+/// `r`) to *scene_doc. Throws io::InputError.
+void apply_study_scene_overrides(io::JsonReader& r, const nlohmann::json& doc,
+                                 const std::string& file, nlohmann::json* scene_doc);
+
 /// 64-bit FNV-1a of a string, as 16 hex digits.
 std::string fnv1a_hex(const std::string& text);
 

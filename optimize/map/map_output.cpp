@@ -143,8 +143,10 @@ std::string boundary_csv(const MapStudy& st, const std::vector<CellSummary>& cel
   return o.str();
 }
 
-json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
-                  const std::vector<BoundaryResult>& boundaries) {
+namespace {
+
+/// The study's settings: name, models, axes, trials, the definition of stabilized.
+json map_summary_settings(const MapStudy& st) {
   json j;
   j["type"] = "pronk_map";
   j["name"] = st.name;
@@ -187,7 +189,11 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
       {"apex_error_m", c.settle.apex_error},
       {"within_strides", c.within_strides},
       {"hold_strides", c.hold_strides}};
-  // Totals.
+  return j;
+}
+
+json map_summary_totals(const MapStudy& st, const std::vector<CellSummary>& cells,
+                        const std::vector<BoundaryResult>& boundaries) {
   long disagreements = 0, a_only = 0, b_only = 0;
   std::vector<double> frac(st.models.size(), 0.0);
   for (const CellSummary& s : cells) {
@@ -201,7 +207,7 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
     fr[model_name(st.models[m])] = frac[m] / static_cast<double>(cells.size());
   long probes = 0;
   for (const auto& b : boundaries) probes += b.probes;
-  j["totals"] = {
+  json totals = {
       {"cells", st.cells()},
       {"trials", st.cells() * st.trials.count},
       {"simulations", st.cells() * st.trials.count * static_cast<long>(st.models.size()) +
@@ -209,9 +215,13 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
       {"disagreements", disagreements},
       {model_name(st.models.front()) + "_only", a_only},
       {"stabilized_fraction", fr}};
-  if (st.models.size() > 1) j["totals"][model_name(st.models.back()) + "_only"] = b_only;
-  // Disagreement threshold along axis 0 (over all rows): the largest value
-  // below which no cell has a disagreement, and the first value with one.
+  if (st.models.size() > 1) totals[model_name(st.models.back()) + "_only"] = b_only;
+  return totals;
+}
+
+/// Disagreement threshold along axis 0 (over all rows): the largest value below which no
+/// cell has a disagreement, and the first value with one.
+json map_summary_disagreement(const MapStudy& st, const std::vector<CellSummary>& cells) {
   long first_col = -1;
   for (long col = 0; col < st.columns() && first_col < 0; ++col)
     for (long row = 0; row < st.rows(); ++row)
@@ -224,7 +234,11 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
                                    ? json(st.axes[0].values[static_cast<size_t>(first_col - 1)])
                                : first_col < 0 ? json(st.axes[0].values.back())
                                                : json(nullptr);
-  j["disagreement"] = d;
+  return d;
+}
+
+json map_summary_boundary(const MapStudy& st, const std::vector<CellSummary>& cells,
+                          const std::vector<BoundaryResult>& boundaries) {
   json bj = json::array();
   for (const BoundaryResult& b : boundaries) {
     const long fd = first_disagreement_column(st, cells, b.row);
@@ -236,13 +250,23 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
         fd >= 0 ? json(st.axes[0].values[static_cast<size_t>(fd)]) : json(nullptr);
     bj.push_back(one);
   }
-  j["boundary"] = {{"axis", st.axes[0].name},
-                   {"resolution", st.resolution},
-                   {"definition",
-                    "per row, the largest axis value at which every trial of the primary model "
-                    "stabilizes: the last cell with all trials stabilized, bisected towards the "
-                    "next cell to the resolution; first_good is the lowest such cell"},
-                   {"rows", bj}};
+  return {{"axis", st.axes[0].name},
+          {"resolution", st.resolution},
+          {"definition",
+           "per row, the largest axis value at which every trial of the primary model "
+           "stabilizes: the last cell with all trials stabilized, bisected towards the "
+           "next cell to the resolution; first_good is the lowest such cell"},
+          {"rows", bj}};
+}
+
+}  // namespace
+
+json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
+                  const std::vector<BoundaryResult>& boundaries) {
+  json j = map_summary_settings(st);
+  j["totals"] = map_summary_totals(st, cells, boundaries);
+  j["disagreement"] = map_summary_disagreement(st, cells);
+  j["boundary"] = map_summary_boundary(st, cells, boundaries);
   j["files"] = {"cells.csv",        "trials.csv",      "boundary.csv",
                 "summary.json",     "fraction.svg",    "fraction.gp",
                 "disagreement.svg", "disagreement.gp", "journal.jsonl"};

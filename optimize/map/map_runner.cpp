@@ -203,123 +203,134 @@ std::string MapRunOptions::validate() const {
   return "";
 }
 
-MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
-  const std::string bad = options.validate();
-  if (!bad.empty()) throw std::invalid_argument("MapRunOptions: " + bad);
-  const double t0 = now_s();
-  LocalRunner local(options.threads);
-  TaskRunner& runner = options.runner ? *options.runner : local;
-  MapOutcome out;
-  out.out_dir = options.out_dir.empty() ? st.output_dir : options.out_dir;
-  out.cells = st.cells();
-  io::make_directories(out.out_dir);
-  const std::string journal_path = out.out_dir + "/journal.jsonl";
-  JournalState js;
-  if (options.resume) {
-    js = read_map_journal(journal_path, st);
-    check_last_cell(js, st, journal_path);
-  } else {
-    std::error_code ec;
-    std::filesystem::remove(journal_path, ec);
-  }
-  MapJournal journal(journal_path,
-                     json{{"type", "pronk_map_journal"}, {"name", st.name}, {"hash", st.hash}});
+namespace {
 
-  // Phase 1: the cells not in the journal.
-  std::vector<CellResult> cells(static_cast<size_t>(st.cells()));
-  std::vector<bool> have(cells.size(), false);
+/// The progress line of a map on stderr, at most every 0.2 s (and at the end of a phase).
+class MapProgress {
+ public:
+  MapProgress(const MapStudy& st, const MapRunOptions& options, double t0)
+      : st_(st), options_(options), t0_(t0) {}
+  void operator()(const char* what, long n, long total) {
+    if (!options_.progress) return;
+    const double t = now_s();
+    if (t - last_print_ < 0.2 && n < total) return;
+    last_print_ = t;
+    std::fprintf(stderr, "\rmap %s: %s %ld/%ld (%.0f s)", st_.name.c_str(), what, n, total,
+                 t - t0_);
+    if (n >= total) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  const MapStudy& st_;
+  const MapRunOptions& options_;
+  double t0_;
+  double last_print_ = 0.0;
+};
+
+/// The run's shared state: the study, its options, the runner, the journal.
+struct MapRun {
+  const MapStudy& st;
+  const MapRunOptions& options;
+  TaskRunner& runner;
+  MapJournal& journal;
+  MapProgress& progress;
+  double t0;
+};
+
+/// Phase 1: the cells not in the journal. Returns false when stopped (out says why).
+bool run_map_cells(const MapRun& run, JournalState& js, std::vector<CellResult>* cells,
+                   MapOutcome* out) {
+  const MapStudy& st = run.st;
+  std::vector<bool> have(cells->size(), false);
   std::vector<MapTask> tasks;
   for (long i = 0; i < st.cells(); ++i) {
     auto it = js.cells.find(i);
     if (it != js.cells.end()) {
-      cells[static_cast<size_t>(i)] = std::move(it->second);
+      (*cells)[static_cast<size_t>(i)] = std::move(it->second);
       have[static_cast<size_t>(i)] = true;
-      ++out.cells_replayed;
+      ++out->cells_replayed;
     } else {
       tasks.push_back({0, i, 0.0, 0.0});
     }
   }
-  double last_print = 0.0;
-  long done = out.cells_replayed;
-  auto progress = [&](const char* what, long n, long total) {
-    if (!options.progress) return;
-    const double t = now_s();
-    if (t - last_print < 0.2 && n < total) return;
-    last_print = t;
-    std::fprintf(stderr, "\rmap %s: %s %ld/%ld (%.0f s)", st.name.c_str(), what, n, total, t - t0);
-    if (n >= total) std::fprintf(stderr, "\n");
-  };
+  long done = out->cells_replayed;
   const double t_cells = now_s();
-  runner.run(
+  run.runner.run(
       st, tasks,
       [&](const MapTask& task, const json& r) {
-        journal.append(r);
-        cells[static_cast<size_t>(task.index)] = cell_from_json(r);
+        run.journal.append(r);
+        (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
         have[static_cast<size_t>(task.index)] = true;
-        ++out.cells_computed;
-        progress("cells", ++done, st.cells());
+        ++out->cells_computed;
+        run.progress("cells", ++done, st.cells());
       },
-      options.stop_flag);
+      run.options.stop_flag);
   for (bool h : have) {
     if (!h) {
-      out.status = "stopped";
-      out.reason = "interrupted after " + std::to_string(done) + " of " +
-                   std::to_string(st.cells()) + " cells (journal kept; --resume continues)";
-      out.wall_time = now_s() - t0;
-      return out;
+      out->status = "stopped";
+      out->reason = "interrupted after " + std::to_string(done) + " of " +
+                    std::to_string(st.cells()) + " cells (journal kept; --resume continues)";
+      out->wall_time = now_s() - run.t0;
+      return false;
     }
   }
-  out.cells_time = now_s() - t_cells;
-  out.summaries = summarize(st, cells);
+  out->cells_time = now_s() - t_cells;
+  return true;
+}
 
-  // Phase 2: the boundary of every row, bisected where a good cell is followed by a bad one.
-  out.boundaries.resize(static_cast<size_t>(st.rows()));
-  std::vector<bool> have_b(out.boundaries.size(), false);
-  tasks.clear();
+/// Phase 2: the boundary of every row, bisected where a good cell is followed by a bad one.
+/// Returns false when stopped (out says why).
+bool run_map_boundaries(const MapRun& run, const JournalState& js, MapOutcome* out) {
+  const MapStudy& st = run.st;
+  out->boundaries.resize(static_cast<size_t>(st.rows()));
+  std::vector<bool> have_b(out->boundaries.size(), false);
+  std::vector<MapTask> tasks;
   for (long r = 0; r < st.rows(); ++r) {
-    const BoundaryResult b = initial_bracket(st, out.summaries, r);
+    const BoundaryResult b = initial_bracket(st, out->summaries, r);
     auto it = js.boundaries.find(r);
     if (b.status != "bisected") {
-      out.boundaries[static_cast<size_t>(r)] = b;
+      out->boundaries[static_cast<size_t>(r)] = b;
       have_b[static_cast<size_t>(r)] = true;
     } else if (it != js.boundaries.end()) {
-      out.boundaries[static_cast<size_t>(r)] = it->second;
+      out->boundaries[static_cast<size_t>(r)] = it->second;
       have_b[static_cast<size_t>(r)] = true;
-      ++out.bisections_replayed;
+      ++out->bisections_replayed;
     } else {
       tasks.push_back({1, r, b.good, b.bad});
     }
   }
   long bdone = 0;
   const double t_bisect = now_s();
-  runner.run(
+  run.runner.run(
       st, tasks,
       [&](const MapTask& task, const json& r) {
-        journal.append(r);
-        out.boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
+        run.journal.append(r);
+        out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
         have_b[static_cast<size_t>(task.index)] = true;
-        ++out.rows_bisected;
-        progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
+        ++out->rows_bisected;
+        run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
       },
-      options.stop_flag);
-  out.bisection_time = now_s() - t_bisect;
+      run.options.stop_flag);
+  out->bisection_time = now_s() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)
-    out.boundaries[static_cast<size_t>(r)].first_good =
-        initial_bracket(st, out.summaries, r).first_good;
+    out->boundaries[static_cast<size_t>(r)].first_good =
+        initial_bracket(st, out->summaries, r).first_good;
   for (bool h : have_b) {
     if (!h) {
-      out.status = "stopped";
-      out.reason = "interrupted during the boundary bisection (journal kept; --resume continues)";
-      out.wall_time = now_s() - t0;
-      return out;
+      out->status = "stopped";
+      out->reason = "interrupted during the boundary bisection (journal kept; --resume continues)";
+      out->wall_time = now_s() - run.t0;
+      return false;
     }
   }
+  return true;
+}
 
-  journal.sync();
-
-  // Results.
-  const double t_out = now_s();
+/// summary.json, the CSVs and the heat maps.
+void write_map_outputs(const MapStudy& st, const MapRunOptions& options,
+                       const std::vector<CellResult>& cells, MapOutcome* outcome) {
+  MapOutcome& out = *outcome;
   out.summary = summary_json(st, out.summaries, out.boundaries);
   out.simulations = out.summary["totals"]["simulations"].get<long>();
   // The files are independent: written at once, so their fsyncs and the two
@@ -345,6 +356,42 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
     });
   }
   for (auto& w : writes) w.get();  // the first failure is rethrown (after all ended)
+}
+
+}  // namespace
+
+MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
+  const std::string bad = options.validate();
+  if (!bad.empty()) throw std::invalid_argument("MapRunOptions: " + bad);
+  const double t0 = now_s();
+  LocalRunner local(options.threads);
+  TaskRunner& runner = options.runner ? *options.runner : local;
+  MapOutcome out;
+  out.out_dir = options.out_dir.empty() ? st.output_dir : options.out_dir;
+  out.cells = st.cells();
+  io::make_directories(out.out_dir);
+  const std::string journal_path = out.out_dir + "/journal.jsonl";
+  JournalState js;
+  if (options.resume) {
+    js = read_map_journal(journal_path, st);
+    check_last_cell(js, st, journal_path);
+  } else {
+    std::error_code ec;
+    std::filesystem::remove(journal_path, ec);
+  }
+  MapJournal journal(journal_path,
+                     json{{"type", "pronk_map_journal"}, {"name", st.name}, {"hash", st.hash}});
+  MapProgress progress(st, options, t0);
+  const MapRun run{st, options, runner, journal, progress, t0};
+
+  std::vector<CellResult> cells(static_cast<size_t>(st.cells()));
+  if (!run_map_cells(run, js, &cells, &out)) return out;
+  out.summaries = summarize(st, cells);
+  if (!run_map_boundaries(run, js, &out)) return out;
+  journal.sync();
+
+  const double t_out = now_s();
+  write_map_outputs(st, options, cells, &out);
   out.output_time = now_s() - t_out;
   out.wall_time = now_s() - t0;
   return out;

@@ -70,12 +70,10 @@ void parse_axis_range(io::JsonReader& r, MapAxis& a, double lo_allowed, double h
                     std::to_string(n));
 }
 
-MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
-  MapAxis a;
-  const std::string kind = r.choice_or("kind", "",
-                                       {"pointer", "duty_cycle", "tilt_deg", "lateral_offset",
-                                        "velocity_kick", "disturbance_direction_deg"});
-  double lo = -1e12, hi = 1e12;
+// The axis kind; a pointer axis's pointer (checked against the scene), or the bounds
+// [*lo, *hi] of the values of the other kinds.
+void parse_axis_kind(io::JsonReader& r, const std::string& kind, const json& scene_doc, MapAxis& a,
+                     double* lo, double* hi) {
   if (kind == "pointer") {
     a.kind = AxisKind::kPointer;
     a.pointer = r.string_or("pointer", "");
@@ -92,29 +90,55 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
                              ? " (no such value)"
                              : " (" + io::describe(scene_doc.at(jp)) + ")"));
     }
+  } else if (kind == "duty_cycle") {
+    a.kind = AxisKind::kDutyCycle;
+    *lo = 1e-4;
+    *hi = 0.95;
+  } else if (kind == "tilt_deg") {
+    a.kind = AxisKind::kTilt;
+    *lo = -179;
+    *hi = 179;
+  } else if (kind == "lateral_offset") {
+    a.kind = AxisKind::kLateralOffset;
+    *lo = -100;
+    *hi = 100;
+  } else if (kind == "velocity_kick") {
+    a.kind = AxisKind::kVelocityKick;
+    *lo = -100;
+    *hi = 100;
   } else {
-    if (kind == "duty_cycle") {
-      a.kind = AxisKind::kDutyCycle;
-      lo = 1e-4;
-      hi = 0.95;
-    } else if (kind == "tilt_deg") {
-      a.kind = AxisKind::kTilt;
-      lo = -179;
-      hi = 179;
-    } else if (kind == "lateral_offset") {
-      a.kind = AxisKind::kLateralOffset;
-      lo = -100;
-      hi = 100;
-    } else if (kind == "velocity_kick") {
-      a.kind = AxisKind::kVelocityKick;
-      lo = -100;
-      hi = 100;
-    } else {
-      a.kind = AxisKind::kDisturbanceDirection;
-      lo = -360;
-      hi = 360;
+    a.kind = AxisKind::kDisturbanceDirection;
+    *lo = -360;
+    *hi = 360;
+  }
+}
+
+// "values": a strictly increasing list within [lo, hi].
+void parse_axis_values(io::JsonReader& r, const json& node, MapAxis& a, double lo, double hi) {
+  r.optional("count");
+  const json& v = node.at("values");
+  if (!v.is_array() || v.empty() || static_cast<long>(v.size()) > kMaxValues)
+    throw r.error("values", "a non-empty array of numbers", io::describe(v));
+  const Eigen::VectorXd vv = r.vector("values", static_cast<int>(v.size()), lo, hi);
+  a.values.assign(vv.data(), vv.data() + vv.size());
+  for (size_t i = 1; i < a.values.size(); ++i) {
+    if (!(a.values[i] > a.values[i - 1])) {
+      throw io::InputError(r.file(), r.pointer_of("values") + "/" + std::to_string(i),
+                           "strictly increasing values",
+                           fmt(a.values[i]) + " after " + fmt(a.values[i - 1]));
     }
   }
+  if (a.log_scale && a.values.front() <= 0.0)
+    throw r.error("values", "values > 0 for \"scale\": \"log\"", fmt(a.values.front()));
+}
+
+MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
+  MapAxis a;
+  const std::string kind = r.choice_or("kind", "",
+                                       {"pointer", "duty_cycle", "tilt_deg", "lateral_offset",
+                                        "velocity_kick", "disturbance_direction_deg"});
+  double lo = -1e12, hi = 1e12;
+  parse_axis_kind(r, kind, scene_doc, a, &lo, &hi);
   if (a.kind == AxisKind::kTilt) {
     const Eigen::Vector3d ax = r.vec3_or("axis", Eigen::Vector3d(1, 0, 0));
     if (!(ax.norm() > 1e-12)) throw r.error("axis", "a non-zero rotation axis", "a zero vector");
@@ -149,21 +173,7 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
                   has_values ? "both" : "neither");
   }
   if (has_values) {
-    r.optional("count");
-    const json& v = node.at("values");
-    if (!v.is_array() || v.empty() || static_cast<long>(v.size()) > kMaxValues)
-      throw r.error("values", "a non-empty array of numbers", io::describe(v));
-    const Eigen::VectorXd vv = r.vector("values", static_cast<int>(v.size()), lo, hi);
-    a.values.assign(vv.data(), vv.data() + vv.size());
-    for (size_t i = 1; i < a.values.size(); ++i) {
-      if (!(a.values[i] > a.values[i - 1])) {
-        throw io::InputError(r.file(), r.pointer_of("values") + "/" + std::to_string(i),
-                             "strictly increasing values",
-                             fmt(a.values[i]) + " after " + fmt(a.values[i - 1]));
-      }
-    }
-    if (a.log_scale && a.values.front() <= 0.0)
-      throw r.error("values", "values > 0 for \"scale\": \"log\"", fmt(a.values.front()));
+    parse_axis_values(r, node, a, lo, hi);
   } else {
     parse_axis_range(r, a, lo, hi);
   }
@@ -231,38 +241,28 @@ double pulse_duration_for_duty(const scene::Scene& s, double duty) {
   return duty * flight / (1.0 - duty);
 }
 
-MapStudy parse_map_study(const json& doc, const std::string& file, const std::string& base_dir) {
-  MapStudy st;
-  st.file = file;
-  st.document = doc;
-  io::JsonReader r(doc, file, "");
-  const std::string kind = r.string_or("kind", "");
-  if (kind != "map") {
-    throw r.error("kind", "\"map\" (a robustness-map study)",
-                  doc.contains("kind") ? io::describe(doc.at("kind")) : "nothing");
-  }
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos)
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
-  r.string_or("description", "");
-  // The scene: a path (relative to the study; a design.json gives its resolved
-  // scene) or an inline object, plus overrides.
+namespace {
+
+// The scene: a path (relative to the study; a design.json gives its resolved scene) or an
+// inline object, plus overrides. Sets st->scene_file; returns the scene document.
+json map_study_scene_doc(io::JsonReader& r, const json& doc, const std::string& file,
+                         const std::string& base_dir, MapStudy* st) {
   if (!r.has("scene"))
     throw r.error("scene", "a scene file path, a design.json path or an inline scene", "nothing");
   const json& sv = doc.at("scene");
   r.optional("scene");
   json scene_doc;
-  st.scene_file = file + "#/scene";
+  st->scene_file = file + "#/scene";
   if (sv.is_string()) {
     std::filesystem::path p(sv.get<std::string>());
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    st.scene_file = p.lexically_normal().string();
-    scene_doc = io::read_json_file(st.scene_file);
+    st->scene_file = p.lexically_normal().string();
+    scene_doc = io::read_json_file(st->scene_file);
     if (scene_doc.is_object() && scene_doc.value("type", "") == "pronk_design") {
       if (!scene_doc.contains("scene") || !scene_doc.at("scene").is_object())
-        throw io::InputError(st.scene_file, "/scene", "the design's resolved scene", "nothing");
+        throw io::InputError(st->scene_file, "/scene", "the design's resolved scene", "nothing");
       scene_doc = json(scene_doc.at("scene"));
-      st.scene_file += "#/scene";
+      st->scene_file += "#/scene";
     }
   } else if (sv.is_object()) {
     scene_doc = sv;
@@ -270,25 +270,13 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     throw r.error("scene", "a scene file path, a design.json path or an inline scene",
                   io::describe(sv));
   }
-  if (r.has("scene_overrides")) {
-    const json& ov = doc.at("scene_overrides");
-    r.optional("scene_overrides");
-    if (!ov.is_array())
-      throw r.error("scene_overrides", "an array of \"/ptr=value\" strings", io::describe(ov));
-    for (size_t i = 0; i < ov.size(); ++i) {
-      if (!ov[i].is_string()) {
-        throw io::InputError(file, "/scene_overrides/" + std::to_string(i),
-                             "a \"/ptr=value\" string", io::describe(ov[i]));
-      }
-      io::apply_override(scene_doc, ov[i].get<std::string>());
-    }
-  } else {
-    r.optional("scene_overrides");
-  }
-  st.base_scene = io::parse_scene(scene_doc, st.scene_file);
-  st.scene_doc = io::scene_to_json(st.base_scene);
+  apply_study_scene_overrides(r, doc, file, &scene_doc);
+  return scene_doc;
+}
 
-  // Models.
+std::vector<scene::ModelKind> map_study_models(io::JsonReader& r, const json& doc,
+                                               const std::string& file) {
+  std::vector<scene::ModelKind> models;
   if (r.has("models")) {
     const json& m = doc.at("models");
     r.optional("models");
@@ -296,29 +284,19 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
       throw r.error("models", "an array of one or two of \"impulse\", \"pulse\", \"pseudo_rigid\"",
                     io::describe(m));
     for (size_t i = 0; i < m.size(); ++i) {
-      st.models.push_back(model_of(file, "/models/" + std::to_string(i), m[i]));
+      models.push_back(model_of(file, "/models/" + std::to_string(i), m[i]));
     }
-    if (st.models.size() == 2 && st.models[0] == st.models[1])
+    if (models.size() == 2 && models[0] == models[1])
       throw r.error("models", "two different models", "the same model twice");
   } else {
     r.optional("models");
-    st.models = {scene::ModelKind::kImpulse, scene::ModelKind::kPulse};
+    models = {scene::ModelKind::kImpulse, scene::ModelKind::kPulse};
   }
-  const bool full_model = std::find(st.models.begin(), st.models.end(),
-                                    scene::ModelKind::kPseudoRigid) != st.models.end();
-  if (full_model)
-    check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
+  return models;
+}
 
-  // Axes.
-  if (!r.has("axes")) throw r.error("axes", "an array of one or two axes", "nothing");
-  const json& axes_node = doc.at("axes");
-  if (!axes_node.is_array() || axes_node.empty() || axes_node.size() > 2)
-    throw r.error("axes", "an array of one or two axes", io::describe(axes_node));
-  {
-    auto readers = r.object_array("axes");
-    for (size_t i = 0; i < readers.size(); ++i)
-      st.axes.push_back(parse_axis(readers[i], axes_node[i], st.scene_doc));
-  }
+// The checks of each axis against the scene and the other axes.
+void check_map_study_axes(const io::JsonReader& r, const std::string& file, const MapStudy& st) {
   if (st.axes.size() == 2 && st.axes[0].name == st.axes[1].name)
     throw io::InputError(file, "/axes/1/name", "a name different from axis 0's",
                          "\"" + st.axes[1].name + "\"");
@@ -349,57 +327,69 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
       st.axes[1].kind == AxisKind::kPointer && st.axes[0].pointer == st.axes[1].pointer)
     throw io::InputError(file, "/axes/1/pointer", "a pointer different from axis 0's",
                          "\"" + st.axes[1].pointer + "\"");
+}
 
-  // Trials.
-  {
-    io::JsonReader t = r.object("trials");
-    st.trials.count = t.integer_or("count", 16, 1, 100000);
-    st.trials.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 9007199254740991L));
-    st.trial_set.duration = t.number_or("duration", 12.0, 1e-3, 1e6);
-    st.trial_set.strides = t.integer_or("strides", 0, 0, 100000000);
-    range(t, "tilt_deg", kDeg, &st.trials.tilt_lo, &st.trials.tilt_hi);
-    range(t, "offset", 1.0, &st.trials.offset_lo, &st.trials.offset_hi);
-    range(t, "lateral_offset", 1.0, &st.trials.lateral_lo, &st.trials.lateral_hi);
-    range(t, "velocity_kick", 1.0, &st.trials.kick_lo, &st.trials.kick_hi);
-    range(t, "yaw_deg", kDeg, &st.trials.yaw_lo, &st.trials.yaw_hi);
-    range(t, "angular_velocity", 1.0, &st.trials.spin_lo, &st.trials.spin_hi);
-    const std::string seeding = t.choice_or("seeding", "row", {"row", "cell"});
-    st.seeding = seeding == "cell" ? Seeding::kCell : Seeding::kRow;
-    t.finish();
-  }
-  // Stabilized.
+void parse_map_study_axes(io::JsonReader& r, const json& doc, const std::string& file,
+                          MapStudy* st) {
+  if (!r.has("axes")) throw r.error("axes", "an array of one or two axes", "nothing");
+  const json& axes_node = doc.at("axes");
+  if (!axes_node.is_array() || axes_node.empty() || axes_node.size() > 2)
+    throw r.error("axes", "an array of one or two axes", io::describe(axes_node));
+  auto readers = r.object_array("axes");
+  for (size_t i = 0; i < readers.size(); ++i)
+    st->axes.push_back(parse_axis(readers[i], axes_node[i], st->scene_doc));
+  check_map_study_axes(r, file, *st);
+}
+
+void parse_map_study_trials(io::JsonReader t, MapStudy* st) {
+  st->trials.count = t.integer_or("count", 16, 1, 100000);
+  st->trials.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 9007199254740991L));
+  st->trial_set.duration = t.number_or("duration", 12.0, 1e-3, 1e6);
+  st->trial_set.strides = t.integer_or("strides", 0, 0, 100000000);
+  auto& tr = st->trials;
+  range(t, "tilt_deg", kDeg, &tr.tilt_lo, &tr.tilt_hi);
+  range(t, "offset", 1.0, &tr.offset_lo, &tr.offset_hi);
+  range(t, "lateral_offset", 1.0, &tr.lateral_lo, &tr.lateral_hi);
+  range(t, "velocity_kick", 1.0, &tr.kick_lo, &tr.kick_hi);
+  range(t, "yaw_deg", kDeg, &tr.yaw_lo, &tr.yaw_hi);
+  range(t, "angular_velocity", 1.0, &tr.spin_lo, &tr.spin_hi);
+  const std::string seeding = t.choice_or("seeding", "row", {"row", "cell"});
+  st->seeding = seeding == "cell" ? Seeding::kCell : Seeding::kRow;
+  t.finish();
+}
+
+// "stabilized", "stability" and "boundary" (the resolution in axis-0 units: default 1/8 of
+// the smallest spacing).
+void parse_map_study_criteria(io::JsonReader& r, MapStudy* st) {
   if (r.has("stabilized")) {
     io::JsonReader s = r.object("stabilized");
-    st.stabilized.settle.position_error = s.positive_or("position_error", 0.01);
-    st.stabilized.settle.tilt = s.positive_or("tilt_deg", 1.0) * kDeg;
-    st.stabilized.settle.apex_error = s.positive_or("apex_error", 0.005);
-    st.stabilized.within_strides = s.integer_or("within_strides", 30, 0, 100000000);
-    st.stabilized.hold_strides = s.integer_or("hold_strides", 3, 1, 100000000);
+    st->stabilized.settle.position_error = s.positive_or("position_error", 0.01);
+    st->stabilized.settle.tilt = s.positive_or("tilt_deg", 1.0) * kDeg;
+    st->stabilized.settle.apex_error = s.positive_or("apex_error", 0.005);
+    st->stabilized.within_strides = s.integer_or("within_strides", 30, 0, 100000000);
+    st->stabilized.hold_strides = s.integer_or("hold_strides", 3, 1, 100000000);
     s.finish();
   } else {
     r.optional("stabilized");
   }
-  st.stability = r.boolean_or("stability", true);
-  // Boundary resolution (axis-0 units): default 1/8 of the smallest spacing.
-  {
-    const auto& v = st.axes[0].values;
-    double spacing = 0.0;
-    for (size_t i = 1; i < v.size(); ++i)
-      spacing = i == 1 ? v[1] - v[0] : std::min(spacing, v[i] - v[i - 1]);
-    if (r.has("boundary")) {
-      io::JsonReader b = r.object("boundary");
-      st.resolution = b.positive_or("resolution", spacing > 0 ? spacing / 8 : 1e-3);
-      st.max_bisection_steps = static_cast<int>(b.integer_or("max_steps", 40, 0, 200));
-      b.finish();
-    } else {
-      r.optional("boundary");
-      st.resolution = spacing > 0 ? spacing / 8 : 1e-3;
-    }
+  st->stability = r.boolean_or("stability", true);
+  const auto& v = st->axes[0].values;
+  double spacing = 0.0;
+  for (size_t i = 1; i < v.size(); ++i)
+    spacing = i == 1 ? v[1] - v[0] : std::min(spacing, v[i] - v[i - 1]);
+  if (r.has("boundary")) {
+    io::JsonReader b = r.object("boundary");
+    st->resolution = b.positive_or("resolution", spacing > 0 ? spacing / 8 : 1e-3);
+    st->max_bisection_steps = static_cast<int>(b.integer_or("max_steps", 40, 0, 200));
+    b.finish();
+  } else {
+    r.optional("boundary");
+    st->resolution = spacing > 0 ? spacing / 8 : 1e-3;
   }
-  st.output_dir = r.string_or("output", "results/" + st.name);
-  r.finish();
+}
 
-  // Every pointer-axis value must make a valid scene; errors name the axis value.
+// Every pointer-axis value must make a valid scene; errors name the axis value.
+void check_map_study_pointer_values(const MapStudy& st, const std::string& file, bool full_model) {
   for (size_t i = 0; i < st.axes.size(); ++i) {
     const MapAxis& a = st.axes[i];
     if (a.kind != AxisKind::kPointer) continue;
@@ -420,6 +410,38 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
         check_robot(s, file, where, "a value that makes a robot the full model can build");
     }
   }
+}
+
+}  // namespace
+
+MapStudy parse_map_study(const json& doc, const std::string& file, const std::string& base_dir) {
+  MapStudy st;
+  st.file = file;
+  st.document = doc;
+  io::JsonReader r(doc, file, "");
+  const std::string kind = r.string_or("kind", "");
+  if (kind != "map") {
+    throw r.error("kind", "\"map\" (a robustness-map study)",
+                  doc.contains("kind") ? io::describe(doc.at("kind")) : "nothing");
+  }
+  st.name = r.string_or("name", "");
+  if (st.name.empty() || st.name.find('/') != std::string::npos)
+    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  r.string_or("description", "");
+  const json scene_doc = map_study_scene_doc(r, doc, file, base_dir, &st);
+  st.base_scene = io::parse_scene(scene_doc, st.scene_file);
+  st.scene_doc = io::scene_to_json(st.base_scene);
+  st.models = map_study_models(r, doc, file);
+  const bool full_model = std::find(st.models.begin(), st.models.end(),
+                                    scene::ModelKind::kPseudoRigid) != st.models.end();
+  if (full_model)
+    check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
+  parse_map_study_axes(r, doc, file, &st);
+  parse_map_study_trials(r.object("trials"), &st);
+  parse_map_study_criteria(r, &st);
+  st.output_dir = r.string_or("output", "results/" + st.name);
+  r.finish();
+  check_map_study_pointer_values(st, file, full_model);
   st.hash = fnv1a_hex(doc.dump() + "\n" + st.scene_doc.dump());
   return st;
 }

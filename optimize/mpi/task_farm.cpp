@@ -283,140 +283,180 @@ void TaskFarm::release_workers() {
   for (int w = 1; w < size_; ++w) sends.text(std::string(), w, kTagStop);
 }
 
-void TaskFarm::run(const std::vector<std::vector<double>>& tasks, const ComputeFn& compute,
-                   const ResultFn& on_result, const std::atomic<bool>* stop) {
-  const long n = static_cast<long>(tasks.size());
-  std::atomic<bool> failed{false};
-  auto stopped = [&] { return (stop && stop->load()) || failed.load(); };
+namespace {
 
-  // The next unclaimed task; chunks for worker ranks, single tasks for rank 0's thread.
-  std::mutex claim_mu;
-  long next = 0;
-  auto claim = [&](bool guided) -> std::pair<long, long> {
-    std::lock_guard<std::mutex> lock(claim_mu);
-    if (stopped() || next >= n) return {next, next};
-    const long k = guided ? std::max(1L, (n - next) / (kGuidedDivisor * size_)) : 1L;
-    const long begin = next;
-    next = std::min(n, next + k);
-    return {begin, next};
-  };
-  auto exhausted = [&] {
-    std::lock_guard<std::mutex> lock(claim_mu);
-    return next >= n;
-  };
+/// One TaskFarm::run on rank 0: the claims on the tasks (chunks for worker ranks, single
+/// tasks for rank 0's thread), the delivery of results, the chunks in hand per worker.
+class FarmRun {
+ public:
+  FarmRun(const std::vector<std::vector<double>>& tasks, const ResultFn& on_result,
+          const std::atomic<bool>* stop, int size, FarmStats& stats)
+      : tasks_(tasks),
+        n_(static_cast<long>(tasks.size())),
+        on_result_(on_result),
+        stop_(stop),
+        size_(size),
+        stats_(stats),
+        in_hand_(static_cast<size_t>(size), 0) {}
+
+  bool stopped() const { return (stop_ && stop_->load()) || failed_.load(); }
+  void fail() { failed_.store(true); }
+  const std::exception_ptr& error() const { return error_; }
+
+  /// The next unclaimed tasks [begin, end): a guided chunk, or one task.
+  std::pair<long, long> claim(bool guided) {
+    std::lock_guard<std::mutex> lock(claim_mu_);
+    if (stopped() || next_ >= n_) return {next_, next_};
+    const long k = guided ? std::max(1L, (n_ - next_) / (kGuidedDivisor * size_)) : 1L;
+    const long begin = next_;
+    next_ = std::min(n_, next_ + k);
+    return {begin, next_};
+  }
+  bool exhausted() {
+    std::lock_guard<std::mutex> lock(claim_mu_);
+    return next_ >= n_;
+  }
 
   // Results reach on_result one at a time; the first error wins and stops the rest.
-  std::mutex deliver_mu;
-  std::exception_ptr error;
-  auto record_error = [&](std::exception_ptr e) {
-    std::lock_guard<std::mutex> lock(deliver_mu);
-    if (!error) error = e;
-    failed.store(true);
-  };
-  auto deliver = [&](long i, const json& r) {
-    std::lock_guard<std::mutex> lock(deliver_mu);
+  void record_error(std::exception_ptr e) {
+    std::lock_guard<std::mutex> lock(deliver_mu_);
+    if (!error_) error_ = e;
+    failed_.store(true);
+  }
+  void deliver(long i, const json& r) {
+    std::lock_guard<std::mutex> lock(deliver_mu_);
     try {
-      if (!failed.load()) on_result(i, r);
+      if (!failed_.load()) on_result_(i, r);
     } catch (...) {
-      if (!error) error = std::current_exception();
-      failed.store(true);
+      if (!error_) error_ = std::current_exception();
+      failed_.store(true);
     }
-  };
+  }
 
-  PendingSends sends;
-  std::vector<int> in_hand(static_cast<size_t>(size_), 0);
-  long outstanding = 0;
-  auto send_chunk = [&](int w) {
+  /// Sends worker w a chunk; false when no task is left to claim.
+  bool send_chunk(int w) {
     const auto [begin, end] = claim(true);
     if (begin == end) return false;
     std::vector<double> msg;
     for (long i = begin; i < end; ++i) {
-      const std::vector<double>& t = tasks[static_cast<size_t>(i)];
+      const std::vector<double>& t = tasks_[static_cast<size_t>(i)];
       msg.push_back(static_cast<double>(i));
       msg.push_back(static_cast<double>(t.size()));
       msg.insert(msg.end(), t.begin(), t.end());
     }
-    sends.doubles(std::move(msg), w, kTagTasks);
-    ++in_hand[static_cast<size_t>(w)];
-    ++outstanding;
+    sends_.doubles(std::move(msg), w, kTagTasks);
+    ++in_hand_[static_cast<size_t>(w)];
+    ++outstanding_;
     ++stats_.chunks;
     stats_.largest_chunk = std::max(stats_.largest_chunk, end - begin);
     return true;
-  };
-  // The workers' first chunks go out before rank 0's thread starts claiming.
-  for (int c = 0; c < kChunksInHand; ++c)
-    for (int w = 1; w < size_; ++w) send_chunk(w);
+  }
 
-  // Rank 0's own worker: no MPI calls on this thread (MPI_THREAD_FUNNELED).
-  std::atomic<long> local_tasks{0};
-  std::thread local([&] {
+  /// Rank 0's own worker: no MPI calls on this thread (MPI_THREAD_FUNNELED).
+  void compute_locally(const ComputeFn& compute) {
     while (true) {
       const auto [i, end] = claim(false);
       if (i == end) break;
       try {
-        deliver(i, compute(tasks[static_cast<size_t>(i)]));
-        ++local_tasks;
+        deliver(i, compute(tasks_[static_cast<size_t>(i)]));
+        ++local_tasks_;
       } catch (...) {
         record_error(std::current_exception());
       }
     }
-  });
+  }
+  long local_tasks() const { return local_tasks_.load(); }
 
-  bool cancelled = false;
-  Backoff backoff;
-  Message m;
-  try {
+  /// Rank 0's MPI loop: answers, new chunks, the cancel on a stop, until none is in hand.
+  void serve_workers() {
+    bool cancelled = false;
+    Backoff backoff;
+    Message m;
     while (true) {
       if (stopped() && !cancelled) {
         for (int w = 1; w < size_; ++w)
-          if (in_hand[static_cast<size_t>(w)] > 0) sends.text(std::string(), w, kTagCancel);
+          if (in_hand_[static_cast<size_t>(w)] > 0) sends_.text(std::string(), w, kTagCancel);
         cancelled = true;
       }
-      if (outstanding == 0 && (cancelled || exhausted())) break;
+      if (outstanding_ == 0 && (cancelled || exhausted())) break;
       if (!poll_message(MPI_ANY_SOURCE, m)) {
-        sends.progress();
+        sends_.progress();
         backoff.sleep();
         continue;
       }
       backoff.reset();
       if (m.tag == kTagResults) {
-        // Lines "position json\n"; a cancelled chunk's answer may be short or empty.
-        try {
-          for (size_t at = 0; at < m.text.size();) {
-            const size_t space = m.text.find(' ', at), nl = m.text.find('\n', at);
-            const long i = std::strtol(m.text.c_str() + at, nullptr, 10);
-            if (space == std::string::npos || nl == std::string::npos || space > nl || i < 0 ||
-                i >= n)
-              throw std::runtime_error("a malformed result");
-            deliver(i, json::parse(m.text.begin() + static_cast<std::ptrdiff_t>(space + 1),
-                                   m.text.begin() + static_cast<std::ptrdiff_t>(nl)));
-            ++stats_.tasks_remote;
-            at = nl + 1;
-          }
-        } catch (const std::exception& e) {
-          record_error(std::make_exception_ptr(std::runtime_error(
-              "MPI: the results of rank " + std::to_string(m.source) + ": " + e.what())));
-        }
+        deliver_results(m);
       } else if (m.tag == kTagError) {
         record_error(decode_error(m.source, m.text));
       } else {
         throw std::runtime_error("MPI: unexpected message tag " + std::to_string(m.tag));
       }
-      --in_hand[static_cast<size_t>(m.source)];
-      --outstanding;
-      while (!cancelled && in_hand[static_cast<size_t>(m.source)] < kChunksInHand &&
+      --in_hand_[static_cast<size_t>(m.source)];
+      --outstanding_;
+      while (!cancelled && in_hand_[static_cast<size_t>(m.source)] < kChunksInHand &&
              send_chunk(m.source)) {
       }
     }
-    sends.wait_all();
+    sends_.wait_all();
+  }
+
+ private:
+  /// Lines "position json\n"; a cancelled chunk's answer may be short or empty.
+  void deliver_results(const Message& m) {
+    try {
+      for (size_t at = 0; at < m.text.size();) {
+        const size_t space = m.text.find(' ', at), nl = m.text.find('\n', at);
+        const long i = std::strtol(m.text.c_str() + at, nullptr, 10);
+        if (space == std::string::npos || nl == std::string::npos || space > nl || i < 0 || i >= n_)
+          throw std::runtime_error("a malformed result");
+        deliver(i, json::parse(m.text.begin() + static_cast<std::ptrdiff_t>(space + 1),
+                               m.text.begin() + static_cast<std::ptrdiff_t>(nl)));
+        ++stats_.tasks_remote;
+        at = nl + 1;
+      }
+    } catch (const std::exception& e) {
+      record_error(std::make_exception_ptr(std::runtime_error(
+          "MPI: the results of rank " + std::to_string(m.source) + ": " + e.what())));
+    }
+  }
+
+  const std::vector<std::vector<double>>& tasks_;
+  const long n_;
+  const ResultFn& on_result_;
+  const std::atomic<bool>* stop_;
+  const int size_;
+  FarmStats& stats_;
+  std::atomic<bool> failed_{false};
+  std::mutex claim_mu_;
+  long next_ = 0;
+  std::mutex deliver_mu_;
+  std::exception_ptr error_;
+  PendingSends sends_;
+  std::vector<int> in_hand_;
+  long outstanding_ = 0;
+  std::atomic<long> local_tasks_{0};
+};
+
+}  // namespace
+
+void TaskFarm::run(const std::vector<std::vector<double>>& tasks, const ComputeFn& compute,
+                   const ResultFn& on_result, const std::atomic<bool>* stop) {
+  FarmRun farm(tasks, on_result, stop, size_, stats_);
+  // The workers' first chunks go out before rank 0's thread starts claiming.
+  for (int c = 0; c < kChunksInHand; ++c)
+    for (int w = 1; w < size_; ++w) farm.send_chunk(w);
+  std::thread local([&] { farm.compute_locally(compute); });
+  try {
+    farm.serve_workers();
   } catch (...) {
-    failed.store(true);
+    farm.fail();
     local.join();
     throw;
   }
   local.join();
-  stats_.tasks_local += local_tasks.load();
-  if (error) std::rethrow_exception(error);
+  stats_.tasks_local += farm.local_tasks();
+  if (farm.error()) std::rethrow_exception(farm.error());
 }
 
 WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {

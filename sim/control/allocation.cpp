@@ -287,6 +287,72 @@ void allocate_minimum_norm(const std::vector<LegSlot>& legs, int n_active, const
   }
 }
 
+/// Layout sums over the active legs (the seed scheme's closed form).
+struct SeedLayoutSums {
+  double Sx = 0, Sy = 0, Sxx = 0, Syy = 0, Sxy = 0, Syz = 0, sumsq = 0;
+  double zmin = std::numeric_limits<double>::infinity();
+  double zmax = -std::numeric_limits<double>::infinity();
+  Vec3 Sr = Vec3::Zero();
+};
+
+SeedLayoutSums seed_layout_sums(const std::vector<LegSlot>& legs) {
+  SeedLayoutSums s;
+  for (const auto& leg : legs) {
+    if (!leg.active) continue;
+    const Vec3& r = leg.hip_body;
+    s.Sr += r;
+    s.Sx += r.x();
+    s.Sy += r.y();
+    s.Sxx += r.x() * r.x();
+    s.Syy += r.y() * r.y();
+    s.Sxy += r.x() * r.y();
+    s.Syz += r.y() * r.z();
+    s.sumsq += r.squaredNorm();
+    s.zmin = std::min(s.zmin, r.z());
+    s.zmax = std::max(s.zmax, r.z());
+  }
+  return s;
+}
+
+/// The additions c r_y (x) and a r_x + b r_y (z) that produce the moment Hres.
+struct SeedCoefficients {
+  double a = 0.0, b = 0.0, c = 0.0;
+  bool singular_c = false;   ///< sum of r_y^2 ~ 0: H_z cannot be allocated
+  bool singular_ab = false;  ///< the 2x2 system for a, b is singular
+};
+
+SeedCoefficients seed_coefficients(const SeedLayoutSums& s, const Vec3& Hres) {
+  SeedCoefficients k;
+  const double Sxx = s.Sxx, Syy = s.Syy, Sxy = s.Sxy, Syz = s.Syz;
+  const double Sxy_scale = Sxx + Syy;
+  if (Syy > 1e-12 * Sxy_scale && Syy > 0.0) {
+    k.c = -Hres.z() / Syy;
+  } else {
+    k.singular_c = true;
+  }
+  const double det = Sxx * Syy - Sxy * Sxy;
+  const double rhs_x = Hres.x();
+  const double rhs_y = Hres.y() - Syz * k.c;
+  if (det > 1e-12 * Sxy_scale * Sxy_scale && det > 0.0) {
+    // [Sxy  Syy] [a]   [rhs_x]
+    // [-Sxx -Sxy] [b] = [rhs_y]
+    k.a = (-Sxy * rhs_x - Syy * rhs_y) / det;
+    k.b = (Sxx * rhs_x + Sxy * rhs_y) / det;
+  } else {
+    k.singular_ab = true;
+    if (Sxy_scale > 0.0) {  // least-squares best effort
+      Eigen::Matrix2d M;
+      M << Sxy, Syy, -Sxx, -Sxy;
+      Eigen::JacobiSVD<Eigen::Matrix2d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      svd.setThreshold(1e-12);
+      const Eigen::Vector2d ab = svd.solve(Eigen::Vector2d(rhs_x, rhs_y));
+      k.a = ab[0];
+      k.b = ab[1];
+    }
+  }
+  return k;
+}
+
 void allocate_seed(const std::vector<LegSlot>& legs, int n_active, const Vec3& P, const Vec3& H,
                    const AllocationOptions& options, AllocationResult& result) {
   const Vec6 request = stack(P, H);
@@ -302,69 +368,22 @@ void allocate_seed(const std::vector<LegSlot>& legs, int n_active, const Vec3& P
     return;
   }
 
-  // Layout sums over the active legs.
-  double Sx = 0, Sy = 0, Sxx = 0, Syy = 0, Sxy = 0, Syz = 0, sumsq = 0;
-  double zmin = std::numeric_limits<double>::infinity();
-  double zmax = -std::numeric_limits<double>::infinity();
-  Vec3 Sr = Vec3::Zero();
-  for (const auto& leg : legs) {
-    if (!leg.active) continue;
-    const Vec3& r = leg.hip_body;
-    Sr += r;
-    Sx += r.x();
-    Sy += r.y();
-    Sxx += r.x() * r.x();
-    Syy += r.y() * r.y();
-    Sxy += r.x() * r.y();
-    Syz += r.y() * r.z();
-    sumsq += r.squaredNorm();
-    zmin = std::min(zmin, r.z());
-    zmax = std::max(zmax, r.z());
-  }
+  const SeedLayoutSums sums = seed_layout_sums(legs);
   const double n = n_active;
-  const double length = std::sqrt(sumsq / n);
-  const bool symmetric = std::abs(Sx) <= 1e-9 * n * length && std::abs(Sy) <= 1e-9 * n * length &&
-                         zmax - zmin <= 1e-9 * length;
+  const double length = std::sqrt(sums.sumsq / n);
+  const bool symmetric = std::abs(sums.Sx) <= 1e-9 * n * length &&
+                         std::abs(sums.Sy) <= 1e-9 * n * length &&
+                         sums.zmax - sums.zmin <= 1e-9 * length;
 
   // Equal share of P (P_y dropped) and the moment it leaves to the additions.
   const Vec3 share(P.x() / n, 0.0, P.z() / n);
-  const Vec3 Hres = H - Sr.cross(share);
-
-  const double Sxy_scale = Sxx + Syy;
-  bool singular_c = false;
-  bool singular_ab = false;
-  double c = 0.0;
-  if (Syy > 1e-12 * Sxy_scale && Syy > 0.0) {
-    c = -Hres.z() / Syy;
-  } else {
-    singular_c = true;
-  }
-  double a = 0.0, b = 0.0;
-  const double det = Sxx * Syy - Sxy * Sxy;
-  const double rhs_x = Hres.x();
-  const double rhs_y = Hres.y() - Syz * c;
-  if (det > 1e-12 * Sxy_scale * Sxy_scale && det > 0.0) {
-    // [Sxy  Syy] [a]   [rhs_x]
-    // [-Sxx -Sxy] [b] = [rhs_y]
-    a = (-Sxy * rhs_x - Syy * rhs_y) / det;
-    b = (Sxx * rhs_x + Sxy * rhs_y) / det;
-  } else {
-    singular_ab = true;
-    if (Sxy_scale > 0.0) {  // least-squares best effort
-      Eigen::Matrix2d M;
-      M << Sxy, Syy, -Sxx, -Sxy;
-      Eigen::JacobiSVD<Eigen::Matrix2d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      svd.setThreshold(1e-12);
-      const Eigen::Vector2d ab = svd.solve(Eigen::Vector2d(rhs_x, rhs_y));
-      a = ab[0];
-      b = ab[1];
-    }
-  }
+  const Vec3 Hres = H - sums.Sr.cross(share);
+  const SeedCoefficients k = seed_coefficients(sums, Hres);
 
   for (std::size_t i = 0; i < legs.size(); ++i) {
     if (!legs[i].active) continue;
     const Vec3& r = legs[i].hip_body;
-    result.leg_impulse[i] = share + Vec3(c * r.y(), 0.0, a * r.x() + b * r.y());
+    result.leg_impulse[i] = share + Vec3(k.c * r.y(), 0.0, k.a * r.x() + k.b * r.y());
   }
   fill_produced(legs, P, H, result);
 
@@ -375,11 +394,11 @@ void allocate_seed(const std::vector<LegSlot>& legs, int n_active, const Vec3& P
     result.status = AllocationStatus::kInfeasible;
     if (lateral) append(result.message, lateral_message(P.y()));
     if (rest_infeasible) {
-      if (singular_c) {
+      if (k.singular_c) {
         append(result.message,
                "seed scheme: sum of r_y^2 over active legs is ~0, H_z cannot be allocated");
       }
-      if (singular_ab) {
+      if (k.singular_ab) {
         append(result.message,
                "seed scheme: active hips project onto one line through the CoM (2x2 system for "
                "a, b singular), H_x/H_y cannot be allocated independently");

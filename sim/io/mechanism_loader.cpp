@@ -27,6 +27,16 @@ const json* raw(const json& node, const std::string& key) {
 }
 
 class Loader {
+ private:
+  struct Settings {
+    bool internal_auto = false, contact_auto = false;
+    double internal_stiffness = 1e6;  ///< [N/m]
+    double contact_stiffness = 1e5;   ///< [N/m]
+    double strain_budget = 1e-4;
+    double penetration_budget = 1e-4;  ///< [m]
+    double load_factor = 10.0;
+  };
+
  public:
   Loader(const json& doc, std::string file) : doc_(doc), file_(std::move(file)) {}
 
@@ -60,7 +70,20 @@ class Loader {
       JsonReader s(empty, file_, "/simulation");
       read_simulation(s, empty, &m.simulation, &set);
     }
+    read_nodes(r, set, &m);
+    read_elements(r, set, &m);
+    r.finish();
 
+    std::string err;
+    if (!m.validate(&err)) throw r.error("", "a consistent mechanism", err);
+    resolve_stiffness(set, &out);
+    return out;
+  }
+
+ private:
+  /// Masses, anchors and bodies (at least one mass).
+  void read_nodes(JsonReader& r, const Settings& set, pr::Mechanism* mech) {
+    pr::Mechanism& m = *mech;
     if (r.has("masses")) {
       for (JsonReader& e : r.object_array("masses")) {
         const std::string name = node_name(e);
@@ -93,32 +116,36 @@ class Loader {
     if (m.masses.empty()) {
       throw r.error("", "at least one mass or body in \"masses\" or \"bodies\"", "none");
     }
+  }
+
+  /// Connections, surfaces, forces and actuators.
+  void read_elements(JsonReader& r, const Settings& set, pr::Mechanism* m) {
     if (r.has("connections")) {
-      for (JsonReader& e : r.object_array("connections")) read_connection(e, &m);
+      for (JsonReader& e : r.object_array("connections")) read_connection(e, m);
     } else {
       r.optional("connections");
     }
     if (r.has("surfaces")) {
-      for (JsonReader& e : r.object_array("surfaces")) read_surface(e, set, &m);
+      for (JsonReader& e : r.object_array("surfaces")) read_surface(e, set, m);
     } else {
       r.optional("surfaces");
     }
     if (r.has("forces")) {
-      for (JsonReader& e : r.object_array("forces")) read_force(e, &m);
+      for (JsonReader& e : r.object_array("forces")) read_force(e, m);
     } else {
       r.optional("forces");
     }
     if (r.has("actuators")) {
-      for (JsonReader& e : r.object_array("actuators")) read_actuator(e, &m);
+      for (JsonReader& e : r.object_array("actuators")) read_actuator(e, m);
     } else {
       r.optional("actuators");
     }
-    r.finish();
+  }
 
-    std::string err;
-    if (!m.validate(&err)) throw r.error("", "a consistent mechanism", err);
-
-    // Stiffness: "auto" picks from the budgets, then the resolved document records numbers.
+  /// Stiffness: "auto" picks from the budgets, then the resolved document records numbers.
+  void resolve_stiffness(const Settings& set, LoadedMechanism* loaded) const {
+    LoadedMechanism& out = *loaded;
+    pr::Mechanism& m = out.mechanism;
     pr::StiffnessSettings ss;
     ss.internal_auto = set.internal_auto;
     ss.contact_auto = set.contact_auto;
@@ -146,18 +173,7 @@ class Loader {
       sim["internal_stiffness"] = out.stiffness.internal_max;
     }
     if (set.contact_auto) sim["contact_stiffness"] = out.stiffness.contact;
-    return out;
   }
-
- private:
-  struct Settings {
-    bool internal_auto = false, contact_auto = false;
-    double internal_stiffness = 1e6;  ///< [N/m]
-    double contact_stiffness = 1e5;   ///< [N/m]
-    double strain_budget = 1e-4;
-    double penetration_budget = 1e-4;  ///< [m]
-    double load_factor = 10.0;
-  };
 
   static json simulation_json(const pr::SimulationOptions& o, const Settings& s) {
     json j;

@@ -153,231 +153,200 @@ void apply_override(json& doc, const std::string& assignment) {
   }
 }
 
-scene::Scene parse_scene(const json& doc, const std::string& file) {
-  scene::Scene s;
-  JsonReader r(doc, file, "");
-  s.name = r.string_or("name", "scene");
-  if (s.name.empty() || s.name.find('/') != std::string::npos) {
-    throw r.error("name", "a non-empty name without '/'", "\"" + s.name + "\"");
-  }
-  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid"});
-  s.model = model == "pulse"          ? scene::ModelKind::kPulse
-            : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid
-                                      : scene::ModelKind::kImpulse;
-  s.gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
-  const std::string att =
-      r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
-  s.attitude = att == "quaternion" ? scene::AttitudeFormulation::kQuaternion
-                                   : scene::AttitudeFormulation::kSmallAngleEuler123;
-  if (r.has("body"))
-    s.body = parse_body(r.object("body"));
-  else
-    r.optional("body");
+namespace {
 
-  // Legs.
-  if (r.has("legs")) {
-    JsonReader l = r.object("legs");
-    const std::string kind = l.choice_or("kind", "body_only", {"body_only", "legged"});
-    s.legs.body_only = kind == "body_only";
-    s.legs.length = l.positive_or("length", s.legs.length);
-    if (!s.legs.body_only) {
-      if (!l.has("hips")) throw l.error("hips", "an array of hip positions (legged)", "nothing");
-      s.legs.hips = l.vec3_list("hips", 1, 64);
-    } else if (l.has("hips")) {
-      throw l.error("hips", "no hips for kind \"body_only\"", "hips");
-    }
-    s.legs.disabled.assign(s.legs.hips.size(), false);
-    const std::vector<long> disabled = l.integer_array_or(
-        "disabled", 0, std::max<long>(0, static_cast<long>(s.legs.hips.size()) - 1));
-    if (s.legs.hips.empty() && !disabled.empty()) {
-      // A body-only robot has no legs to disable (indexing `disabled` would be out of bounds).
-      throw InputError(file, l.pointer_of("disabled") + "/0",
-                       "no disabled legs (kind \"body_only\" has none)",
-                       "number " + std::to_string(disabled[0]));
-    }
-    for (long i : disabled) s.legs.disabled[static_cast<size_t>(i)] = true;
-    l.finish();
-  } else {
-    r.optional("legs");
+void parse_scene_legs(JsonReader l, const std::string& file, scene::Legs* legs) {
+  const std::string kind = l.choice_or("kind", "body_only", {"body_only", "legged"});
+  legs->body_only = kind == "body_only";
+  legs->length = l.positive_or("length", legs->length);
+  if (!legs->body_only) {
+    if (!l.has("hips")) throw l.error("hips", "an array of hip positions (legged)", "nothing");
+    legs->hips = l.vec3_list("hips", 1, 64);
+  } else if (l.has("hips")) {
+    throw l.error("hips", "no hips for kind \"body_only\"", "hips");
   }
+  legs->disabled.assign(legs->hips.size(), false);
+  const std::vector<long> disabled = l.integer_array_or(
+      "disabled", 0, std::max<long>(0, static_cast<long>(legs->hips.size()) - 1));
+  if (legs->hips.empty() && !disabled.empty()) {
+    // A body-only robot has no legs to disable (indexing `disabled` would be out of bounds).
+    throw InputError(file, l.pointer_of("disabled") + "/0",
+                     "no disabled legs (kind \"body_only\" has none)",
+                     "number " + std::to_string(disabled[0]));
+  }
+  for (long i : disabled) legs->disabled[static_cast<size_t>(i)] = true;
+  l.finish();
+}
 
-  // Controller.
-  scene::seed_gains(s.body, &s.controller.kp, &s.controller.kd);
-  if (r.has("controller")) {
-    JsonReader c = r.object("controller");
-    auto& k = s.controller;
-    k.hop_height = c.positive_or("hop_height", k.hop_height);
-    k.pulse_aware_hop = c.boolean_or("pulse_aware_hop", false);
-    if (c.has("kp")) k.kp = c.vector("kp", 6, 0.0, 1e9);
-    if (c.has("kd")) k.kd = c.vector("kd", 6, 0.0, 1e9);
-    c.optional("kp");
-    c.optional("kd");
-    if (c.has("setpoint")) {
-      JsonReader sp = c.object("setpoint");
-      k.setpoint_position = sp.vec3_or("position", k.setpoint_position);
-      k.setpoint_velocity = sp.vec3_or("velocity", k.setpoint_velocity);
-      k.setpoint_yaw = sp.number_or("yaw_deg", 0.0, -360.0, 360.0) * kDeg;
-      sp.finish();
-    } else {
-      c.optional("setpoint");
-    }
-    if (c.has("bank")) {
-      JsonReader b = c.object("bank");
-      k.bank_enabled = b.boolean_or("enabled", true);
-      k.bank_kp = b.number_or("kp", 0.0, 0.0, 1e6);
-      k.bank_kd = b.number_or("kd", 0.0, 0.0, 1e6);
-      k.bank_max_roll = b.number_or("max_roll_deg", k.bank_max_roll / kDeg, 1e-6, 89.0) * kDeg;
-      b.finish();
-    } else {
-      c.optional("bank");
-    }
-    if (c.has("allocation")) {
-      JsonReader a = c.object("allocation");
-      const std::string scheme = a.choice_or("scheme", "minimum_norm", {"minimum_norm", "seed"});
-      k.allocation.scheme = scheme == "seed" ? control::AllocationScheme::kSeed
-                                             : control::AllocationScheme::kMinimumNorm;
-      k.allocation.max_leg_impulse = a.number_or("max_leg_impulse", 0.0, 0.0, 1e9);
-      k.allocation.residual_tol = a.number_or("residual_tol", k.allocation.residual_tol, 0.0, 1.0);
-      a.finish();
-    } else {
-      c.optional("allocation");
-    }
-    if (c.has("hop_height_changes")) {
-      for (JsonReader h : c.object_array("hop_height_changes")) {
-        const double time = h.number("time", 0.0, 1e9);
-        k.hop_height_changes.emplace_back(time, h.positive_or("hop_height", k.hop_height));
-        h.finish();
-      }
-      std::stable_sort(k.hop_height_changes.begin(), k.hop_height_changes.end(),
-                       [](const auto& a, const auto& b) { return a.first < b.first; });
-    } else {
-      c.optional("hop_height_changes");
-    }
-    if (c.has("gait")) {
-      JsonReader g = c.object("gait");
-      const std::string kind = g.choice_or("kind", "pronk", {"pronk", "alternate"});
-      k.gait = kind == "alternate" ? scene::Gait::kAlternate : scene::Gait::kPronk;
-      if (k.gait == scene::Gait::kAlternate) {
-        const long n = static_cast<long>(s.legs.hips.size());
-        if (n == 0)
-          throw g.error("kind", "a legged robot for an alternating gait", "body_only legs");
-        if (!g.has("groups"))
-          throw g.error("groups", "leg index groups, e.g. [[0,3],[1,2]]", "nothing");
-        k.gait_groups = g.index_groups("groups", n - 1);
-      } else {
-        g.optional("groups");
-      }
-      g.finish();
-    } else {
-      c.optional("gait");
-    }
-    c.finish();
+// The controller's optional sub-objects: setpoint, bank, allocation.
+void parse_scene_setpoint_bank_allocation(JsonReader& c, scene::Controller* k) {
+  if (c.has("setpoint")) {
+    JsonReader sp = c.object("setpoint");
+    k->setpoint_position = sp.vec3_or("position", k->setpoint_position);
+    k->setpoint_velocity = sp.vec3_or("velocity", k->setpoint_velocity);
+    k->setpoint_yaw = sp.number_or("yaw_deg", 0.0, -360.0, 360.0) * kDeg;
+    sp.finish();
   } else {
-    r.optional("controller");
+    c.optional("setpoint");
   }
+  if (c.has("bank")) {
+    JsonReader b = c.object("bank");
+    k->bank_enabled = b.boolean_or("enabled", true);
+    k->bank_kp = b.number_or("kp", 0.0, 0.0, 1e6);
+    k->bank_kd = b.number_or("kd", 0.0, 0.0, 1e6);
+    k->bank_max_roll = b.number_or("max_roll_deg", k->bank_max_roll / kDeg, 1e-6, 89.0) * kDeg;
+    b.finish();
+  } else {
+    c.optional("bank");
+  }
+  if (c.has("allocation")) {
+    JsonReader a = c.object("allocation");
+    const std::string scheme = a.choice_or("scheme", "minimum_norm", {"minimum_norm", "seed"});
+    k->allocation.scheme = scheme == "seed" ? control::AllocationScheme::kSeed
+                                            : control::AllocationScheme::kMinimumNorm;
+    k->allocation.max_leg_impulse = a.number_or("max_leg_impulse", 0.0, 0.0, 1e9);
+    k->allocation.residual_tol = a.number_or("residual_tol", k->allocation.residual_tol, 0.0, 1.0);
+    a.finish();
+  } else {
+    c.optional("allocation");
+  }
+}
 
-  if (r.has("pulse")) {
-    JsonReader p = r.object("pulse");
-    const std::string mode = p.choice_or("mode", "max_force", {"max_force", "duration"});
-    s.pulse.mode = mode == "duration" ? scene::PulseMode::kDuration : scene::PulseMode::kMaxForce;
-    // Bounded away from 0: the leg force is impulse / duration.
-    s.pulse.max_force = p.number_or("max_force", s.pulse.max_force, 1e-6, 1e9);
-    s.pulse.duration = p.number_or("duration", s.pulse.duration, 1e-6, 1e3);
-    s.pulse.gravity_compensation = p.boolean_or("gravity_compensation", true);
-    p.finish();
-  } else {
-    r.optional("pulse");
-  }
-
-  if (r.has("pseudo_rigid")) {
-    parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid);
-  } else {
-    r.optional("pseudo_rigid");
-  }
-  if (r.has("initial")) {
-    JsonReader in = r.object("initial");
-    s.initial.position = in.vec3_or("position", s.initial.position);
-    s.initial.velocity = in.vec3_or("velocity", s.initial.velocity);
-    s.initial.angular_velocity = in.vec3_or("angular_velocity", s.initial.angular_velocity);
-    if (in.has("attitude_deg") && in.has("attitude_quaternion")) {
-      throw in.error("attitude_quaternion", "either attitude_deg or attitude_quaternion", "both");
+// The controller's schedule: hop height changes and the gait (leg groups need the legs).
+void parse_scene_schedule_gait(JsonReader& c, const scene::Legs& legs, scene::Controller* k) {
+  if (c.has("hop_height_changes")) {
+    for (JsonReader h : c.object_array("hop_height_changes")) {
+      const double time = h.number("time", 0.0, 1e9);
+      k->hop_height_changes.emplace_back(time, h.positive_or("hop_height", k->hop_height));
+      h.finish();
     }
-    const std::string set = in.choice_or("euler_set", "123", {"123", "313"});
-    if (in.has("attitude_deg")) {
-      const Vec3 a = in.vector("attitude_deg", 3, -720.0, 720.0) * kDeg;
-      s.initial.attitude =
-          math::euler_to_quat(a, set == "313" ? math::EulerSet::k313 : math::EulerSet::k123);
-    }
-    if (in.has("attitude_quaternion")) {
-      const Eigen::VectorXd q = in.vector("attitude_quaternion", 4, -1e3, 1e3);
-      if (q.norm() < 1e-9)
-        throw in.error("attitude_quaternion", "a non-zero quaternion [w, x, y, z]", "zero");
-      s.initial.attitude = math::Quat(q[0], q[1], q[2], q[3]).normalized();
-    }
-    in.finish();
+    std::stable_sort(k->hop_height_changes.begin(), k->hop_height_changes.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
   } else {
-    r.optional("initial");
+    c.optional("hop_height_changes");
   }
-
-  if (r.has("disturbances")) {
-    for (JsonReader d : r.object_array("disturbances")) {
-      scene::Disturbance dist;
-      dist.time = d.number("time", 0.0, 1e9);
-      dist.linear_impulse = d.vec3_or("linear_impulse", Vec3::Zero());
-      dist.angular_impulse = d.vec3_or("angular_impulse", Vec3::Zero());
-      d.finish();
-      s.disturbances.push_back(dist);
-    }
-    std::stable_sort(s.disturbances.begin(), s.disturbances.end(),
-                     [](const auto& a, const auto& b) { return a.time < b.time; });
-  } else {
-    r.optional("disturbances");
-  }
-
-  s.simulation.fall_min_height = 0.4 * s.legs.length;
-  if (r.has("simulation")) {
-    JsonReader m = r.object("simulation");
-    auto& sim = s.simulation;
-    sim.duration = m.number_or("duration", sim.duration, 1e-9, 1e7);
-    sim.max_strides = m.integer_or("max_strides", sim.max_strides, 1, 1000000000L);
-    sim.sample_interval = m.positive_or("sample_interval", sim.sample_interval);
-    if (m.has("solver")) {
-      JsonReader o = m.object("solver");
-      auto& so = sim.solver;
-      const std::string method = o.choice_or("method", std::string(ode::to_string(so.method)),
-                                             {"euler", "rk2", "rk4", "dopri5"});
-      ode::parse_method(method, &so.method);
-      so.rtol = o.positive_or("rtol", so.rtol);
-      so.atol = o.positive_or("atol", so.atol);
-      so.h_fixed = o.positive_or("h_fixed", so.h_fixed);
-      so.h_max = o.positive_or("h_max", so.h_max);
-      so.h_min = o.number_or("h_min", so.h_min, 0.0, 1.0);
-      so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
-      so.event_tol = o.positive_or("event_tol", so.event_tol);
-      so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
-      so.max_steps_per_second =
-          o.number_or("max_steps_per_second", so.max_steps_per_second, 0.0, 1e15);
-      std::string err;
-      if (!so.validate(&err)) {
-        const std::string field = err.substr(0, err.find(':'));
-        throw o.error(field, "valid solver options", err);
-      }
-      o.finish();
+  if (c.has("gait")) {
+    JsonReader g = c.object("gait");
+    const std::string kind = g.choice_or("kind", "pronk", {"pronk", "alternate"});
+    k->gait = kind == "alternate" ? scene::Gait::kAlternate : scene::Gait::kPronk;
+    if (k->gait == scene::Gait::kAlternate) {
+      const long n = static_cast<long>(legs.hips.size());
+      if (n == 0) throw g.error("kind", "a legged robot for an alternating gait", "body_only legs");
+      if (!g.has("groups"))
+        throw g.error("groups", "leg index groups, e.g. [[0,3],[1,2]]", "nothing");
+      k->gait_groups = g.index_groups("groups", n - 1);
     } else {
-      m.optional("solver");
+      g.optional("groups");
     }
-    if (m.has("fall")) {
-      JsonReader f = m.object("fall");
-      sim.fall_min_height = f.number_or("min_height", sim.fall_min_height, -1e6, 1e6);
-      sim.fall_max_tilt = f.number_or("max_tilt_deg", sim.fall_max_tilt / kDeg, 1e-3, 180.0) * kDeg;
-      f.finish();
-    } else {
-      m.optional("fall");
-    }
-    m.finish();
+    g.finish();
   } else {
-    r.optional("simulation");
+    c.optional("gait");
   }
+}
+
+void parse_scene_controller(JsonReader c, const scene::Legs& legs, scene::Controller* k) {
+  k->hop_height = c.positive_or("hop_height", k->hop_height);
+  k->pulse_aware_hop = c.boolean_or("pulse_aware_hop", false);
+  if (c.has("kp")) k->kp = c.vector("kp", 6, 0.0, 1e9);
+  if (c.has("kd")) k->kd = c.vector("kd", 6, 0.0, 1e9);
+  c.optional("kp");
+  c.optional("kd");
+  parse_scene_setpoint_bank_allocation(c, k);
+  parse_scene_schedule_gait(c, legs, k);
+  c.finish();
+}
+
+void parse_scene_pulse(JsonReader p, scene::Pulse* pulse) {
+  const std::string mode = p.choice_or("mode", "max_force", {"max_force", "duration"});
+  pulse->mode = mode == "duration" ? scene::PulseMode::kDuration : scene::PulseMode::kMaxForce;
+  // Bounded away from 0: the leg force is impulse / duration.
+  pulse->max_force = p.number_or("max_force", pulse->max_force, 1e-6, 1e9);
+  pulse->duration = p.number_or("duration", pulse->duration, 1e-6, 1e3);
+  pulse->gravity_compensation = p.boolean_or("gravity_compensation", true);
+  p.finish();
+}
+
+void parse_scene_initial(JsonReader in, scene::Initial* initial) {
+  initial->position = in.vec3_or("position", initial->position);
+  initial->velocity = in.vec3_or("velocity", initial->velocity);
+  initial->angular_velocity = in.vec3_or("angular_velocity", initial->angular_velocity);
+  if (in.has("attitude_deg") && in.has("attitude_quaternion")) {
+    throw in.error("attitude_quaternion", "either attitude_deg or attitude_quaternion", "both");
+  }
+  const std::string set = in.choice_or("euler_set", "123", {"123", "313"});
+  if (in.has("attitude_deg")) {
+    const Vec3 a = in.vector("attitude_deg", 3, -720.0, 720.0) * kDeg;
+    initial->attitude =
+        math::euler_to_quat(a, set == "313" ? math::EulerSet::k313 : math::EulerSet::k123);
+  }
+  if (in.has("attitude_quaternion")) {
+    const Eigen::VectorXd q = in.vector("attitude_quaternion", 4, -1e3, 1e3);
+    if (q.norm() < 1e-9)
+      throw in.error("attitude_quaternion", "a non-zero quaternion [w, x, y, z]", "zero");
+    initial->attitude = math::Quat(q[0], q[1], q[2], q[3]).normalized();
+  }
+  in.finish();
+}
+
+std::vector<scene::Disturbance> parse_scene_disturbances(std::vector<JsonReader> items) {
+  std::vector<scene::Disturbance> out;
+  for (JsonReader d : items) {
+    scene::Disturbance dist;
+    dist.time = d.number("time", 0.0, 1e9);
+    dist.linear_impulse = d.vec3_or("linear_impulse", Vec3::Zero());
+    dist.angular_impulse = d.vec3_or("angular_impulse", Vec3::Zero());
+    d.finish();
+    out.push_back(dist);
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& a, const auto& b) { return a.time < b.time; });
+  return out;
+}
+
+void parse_scene_solver(JsonReader o, ode::SolverOptions* so) {
+  const std::string method = o.choice_or("method", std::string(ode::to_string(so->method)),
+                                         {"euler", "rk2", "rk4", "dopri5"});
+  ode::parse_method(method, &so->method);
+  so->rtol = o.positive_or("rtol", so->rtol);
+  so->atol = o.positive_or("atol", so->atol);
+  so->h_fixed = o.positive_or("h_fixed", so->h_fixed);
+  so->h_max = o.positive_or("h_max", so->h_max);
+  so->h_min = o.number_or("h_min", so->h_min, 0.0, 1.0);
+  so->h_initial = o.number_or("h_initial", so->h_initial, 0.0, 1e3);
+  so->event_tol = o.positive_or("event_tol", so->event_tol);
+  so->max_steps = o.integer_or("max_steps", so->max_steps, 1, 1000000000000L);
+  so->max_steps_per_second =
+      o.number_or("max_steps_per_second", so->max_steps_per_second, 0.0, 1e15);
+  std::string err;
+  if (!so->validate(&err)) {
+    const std::string field = err.substr(0, err.find(':'));
+    throw o.error(field, "valid solver options", err);
+  }
+  o.finish();
+}
+
+void parse_scene_simulation(JsonReader m, scene::Simulation* sim) {
+  sim->duration = m.number_or("duration", sim->duration, 1e-9, 1e7);
+  sim->max_strides = m.integer_or("max_strides", sim->max_strides, 1, 1000000000L);
+  sim->sample_interval = m.positive_or("sample_interval", sim->sample_interval);
+  if (m.has("solver")) {
+    parse_scene_solver(m.object("solver"), &sim->solver);
+  } else {
+    m.optional("solver");
+  }
+  if (m.has("fall")) {
+    JsonReader f = m.object("fall");
+    sim->fall_min_height = f.number_or("min_height", sim->fall_min_height, -1e6, 1e6);
+    sim->fall_max_tilt = f.number_or("max_tilt_deg", sim->fall_max_tilt / kDeg, 1e-3, 180.0) * kDeg;
+    f.finish();
+  } else {
+    m.optional("fall");
+  }
+  m.finish();
+}
+
+// The checks across sections, after every section is read.
+void check_scene_consistency(const scene::Scene& s, const std::string& file) {
   if (s.controller.pulse_aware_hop && s.model == scene::ModelKind::kPulse &&
       s.pulse.mode != scene::PulseMode::kDuration) {
     throw InputError(
@@ -391,6 +360,66 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
         "a CoM height above the fall height " + number_text(s.simulation.fall_min_height) + " m",
         number_text(s.initial.position.z()));
   }
+}
+
+// The top-level scalars: name, model, gravity, attitude formulation.
+void parse_scene_header(JsonReader& r, scene::Scene* s) {
+  s->name = r.string_or("name", "scene");
+  if (s->name.empty() || s->name.find('/') != std::string::npos) {
+    throw r.error("name", "a non-empty name without '/'", "\"" + s->name + "\"");
+  }
+  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid"});
+  s->model = model == "pulse"          ? scene::ModelKind::kPulse
+             : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid
+                                       : scene::ModelKind::kImpulse;
+  s->gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
+  const std::string att =
+      r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
+  s->attitude = att == "quaternion" ? scene::AttitudeFormulation::kQuaternion
+                                    : scene::AttitudeFormulation::kSmallAngleEuler123;
+}
+
+}  // namespace
+
+scene::Scene parse_scene(const json& doc, const std::string& file) {
+  scene::Scene s;
+  JsonReader r(doc, file, "");
+  parse_scene_header(r, &s);
+  if (r.has("body"))
+    s.body = parse_body(r.object("body"));
+  else
+    r.optional("body");
+  if (r.has("legs"))
+    parse_scene_legs(r.object("legs"), file, &s.legs);
+  else
+    r.optional("legs");
+  scene::seed_gains(s.body, &s.controller.kp, &s.controller.kd);
+  if (r.has("controller"))
+    parse_scene_controller(r.object("controller"), s.legs, &s.controller);
+  else
+    r.optional("controller");
+  if (r.has("pulse"))
+    parse_scene_pulse(r.object("pulse"), &s.pulse);
+  else
+    r.optional("pulse");
+  if (r.has("pseudo_rigid"))
+    parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid);
+  else
+    r.optional("pseudo_rigid");
+  if (r.has("initial"))
+    parse_scene_initial(r.object("initial"), &s.initial);
+  else
+    r.optional("initial");
+  if (r.has("disturbances"))
+    s.disturbances = parse_scene_disturbances(r.object_array("disturbances"));
+  else
+    r.optional("disturbances");
+  s.simulation.fall_min_height = 0.4 * s.legs.length;
+  if (r.has("simulation"))
+    parse_scene_simulation(r.object("simulation"), &s.simulation);
+  else
+    r.optional("simulation");
+  check_scene_consistency(s, file);
   r.finish();
   return s;
 }

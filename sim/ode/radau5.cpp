@@ -124,7 +124,6 @@ class Radau5Stepper final : public Stepper {
 
   StepStatus step(const OdeSystem& sys, double t_limit) override {
     if (!(t_limit > t_)) return StepStatus::kOk;
-    const auto& c = k();
     bool reject = false;
     int failures = 0;
     if (!have_jacobian_) evaluate_jacobian(sys);
@@ -154,91 +153,15 @@ class Radau5Stepper final : public Stepper {
         retry(0.5 * h);
         continue;
       }
-      const double fac1 = c.u1 / h, alphn = c.alph / h, betan = c.beta / h;
-
-      // Starting values: the previous step's collocation polynomial, or zero.
-      if (first_ || !(h_last_ > 0.0)) {
-        z1_.setZero();
-        z2_.setZero();
-        z3_.setZero();
-        w1_.setZero();
-        w2_.setZero();
-        w3_.setZero();
-      } else {
-        const double c3q = h / h_last_, c1q = c.c1 * c3q, c2q = c.c2 * c3q;
-        z1_ = c1q * (cont1_ + (c1q - c.c2m1) * (cont2_ + (c1q - c.c1m1) * cont3_));
-        z2_ = c2q * (cont1_ + (c2q - c.c2m1) * (cont2_ + (c2q - c.c1m1) * cont3_));
-        z3_ = c3q * (cont1_ + (c3q - c.c2m1) * (cont2_ + (c3q - c.c1m1) * cont3_));
-        w1_ = c.ti11 * z1_ + c.ti12 * z2_ + c.ti13 * z3_;
-        w2_ = c.ti21 * z1_ + c.ti22 * z2_ + c.ti23 * z3_;
-        w3_ = c.ti31 * z1_ + c.ti32 * z2_ + c.ti33 * z3_;
-      }
-
-      // Simplified Newton iteration.
-      faccon_ = std::pow(std::max(faccon_, std::numeric_limits<double>::epsilon()), 0.8);
-      theta_ = kThet;
+      start_stages(h);
       int newt = 0;
-      double dynold = 0.0, thqold = 0.0;
-      enum class Outcome { kConverged, kSlow, kFailed } outcome = Outcome::kFailed;
       double h_slow = h;
-      for (;;) {
-        if (newt >= kNit) break;
-        tmp_ = y_ + z1_;
-        sys.rhs(t_ + c.c1 * h, tmp_, g1_);
-        tmp_ = y_ + z2_;
-        sys.rhs(t_ + c.c2 * h, tmp_, g2_);
-        tmp_ = y_ + z3_;
-        sys.rhs(t_new, tmp_, g3_);
-        counters_.rhs_evaluations += 3;
-        if (!g1_.allFinite() || !g2_.allFinite() || !g3_.allFinite()) break;
-        // Right-hand sides of the transformed systems (stored in z1_, z2_, z3_).
-        z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_ - fac1 * w1_;
-        z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_ - alphn * w2_ + betan * w3_;
-        z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_ - alphn * w3_ - betan * w2_;
-        solve_real(z1_);
-        solve_complex(z2_, z3_);
-        ++newt;
-        double dyno = 0.0;
-        for (int i = 0; i < n_; ++i) {
-          const double a = z1_[i] / scal_[i], b = z2_[i] / scal_[i], d = z3_[i] / scal_[i];
-          dyno += a * a + b * b + d * d;
-        }
-        dyno = std::sqrt(dyno / (3.0 * n_));
-        if (!std::isfinite(dyno)) break;
-        if (newt > 1 && newt < kNit) {
-          const double thq = dyno / dynold;
-          theta_ = newt == 2 ? thq : std::sqrt(thq * thqold);
-          thqold = thq;
-          if (theta_ < 0.99) {
-            faccon_ = theta_ / (1.0 - theta_);
-            const double dyth = faccon_ * dyno * std::pow(theta_, kNit - 1 - newt) / fnewt_;
-            if (dyth >= 1.0) {
-              const double qnewt = std::clamp(dyth, 1e-4, 20.0);
-              h_slow = 0.8 * std::pow(qnewt, -1.0 / (4.0 + kNit - 1 - newt)) * h;
-              outcome = Outcome::kSlow;
-              break;
-            }
-          } else {
-            break;  // diverging
-          }
-        }
-        dynold = std::max(dyno, std::numeric_limits<double>::epsilon());
-        w1_ += z1_;
-        w2_ += z2_;
-        w3_ += z3_;
-        z1_ = c.t11 * w1_ + c.t12 * w2_ + c.t13 * w3_;
-        z2_ = c.t21 * w1_ + c.t22 * w2_ + c.t23 * w3_;
-        z3_ = c.t31 * w1_ + w2_;
-        if (faccon_ * dyno <= fnewt_) {
-          outcome = Outcome::kConverged;
-          break;
-        }
-      }
-      if (outcome == Outcome::kSlow) {
+      const NewtonOutcome outcome = newton(sys, h, t_new, &newt, &h_slow);
+      if (outcome == NewtonOutcome::kSlow) {
         retry(h_slow);
         continue;
       }
-      if (outcome == Outcome::kFailed) {
+      if (outcome == NewtonOutcome::kFailed) {
         retry(0.5 * h);
         continue;
       }
@@ -250,31 +173,10 @@ class Radau5Stepper final : public Stepper {
         continue;
       }
       const double fac = std::min(kSafe, kSafe * (1.0 + 2.0 * kNit) / (newt + 2.0 * kNit));
-      double quot = std::clamp(std::pow(err, 0.25) / fac, kFacR, kFacL);
-      double h_new = h / quot;
+      const double quot = std::clamp(std::pow(err, 0.25) / fac, kFacR, kFacL);
+      const double h_new = h / quot;
       if (err < 1.0) {
-        if (!first_ && h_acc_ > 0.0) {  // Gustafsson's predictive controller
-          double facgus = (h_acc_ / h) * std::pow(err * err / err_acc_, 0.25) / kSafe;
-          facgus = std::clamp(facgus, kFacR, kFacL);
-          quot = std::max(quot, facgus);
-          h_new = h / quot;
-        }
-        h_acc_ = h;
-        err_acc_ = std::max(1e-2, err);
-        first_ = false;
-        accept(sys, h, t_new);
-        h_new = std::min(h_new, h_max_);
-        if (reject) h_new = std::min(h_new, h);
-        const double qt = h_new / h;
-        if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;    // keep h and the LU
-        if (h < h_adapted && !reject) h_new = std::max(h_new, h_adapted);  // clipped at t_limit
-        h_ = h_new;
-        // Reuse the Jacobian while the Newton iteration converges this fast.
-        if (theta_ <= kThet) {
-          jacobian_fresh_ = false;
-        } else {
-          have_jacobian_ = false;
-        }
+        accept_and_adapt(sys, h, t_new, h_adapted, err, quot, h_new, reject);
         return StepStatus::kOk;
       }
       retry(first_ ? 0.1 * h : h_new);
@@ -300,6 +202,117 @@ class Radau5Stepper final : public Stepper {
   SolverCounters& mutable_counters() override { return counters_; }
 
  private:
+  enum class NewtonOutcome { kConverged, kSlow, kFailed };
+
+  /// Starting values of the stages: the previous step's collocation polynomial, or zero.
+  void start_stages(double h) {
+    const auto& c = k();
+    if (first_ || !(h_last_ > 0.0)) {
+      z1_.setZero();
+      z2_.setZero();
+      z3_.setZero();
+      w1_.setZero();
+      w2_.setZero();
+      w3_.setZero();
+    } else {
+      const double c3q = h / h_last_, c1q = c.c1 * c3q, c2q = c.c2 * c3q;
+      z1_ = c1q * (cont1_ + (c1q - c.c2m1) * (cont2_ + (c1q - c.c1m1) * cont3_));
+      z2_ = c2q * (cont1_ + (c2q - c.c2m1) * (cont2_ + (c2q - c.c1m1) * cont3_));
+      z3_ = c3q * (cont1_ + (c3q - c.c2m1) * (cont2_ + (c3q - c.c1m1) * cont3_));
+      w1_ = c.ti11 * z1_ + c.ti12 * z2_ + c.ti13 * z3_;
+      w2_ = c.ti21 * z1_ + c.ti22 * z2_ + c.ti23 * z3_;
+      w3_ = c.ti31 * z1_ + c.ti32 * z2_ + c.ti33 * z3_;
+    }
+  }
+
+  /// The simplified Newton iteration on the stage equations of a step h to t_new; counts
+  /// its iterations in *newt and, when it converges too slowly, proposes *h_slow.
+  NewtonOutcome newton(const OdeSystem& sys, double h, double t_new, int* newt, double* h_slow) {
+    const auto& c = k();
+    const double fac1 = c.u1 / h, alphn = c.alph / h, betan = c.beta / h;
+    faccon_ = std::pow(std::max(faccon_, std::numeric_limits<double>::epsilon()), 0.8);
+    theta_ = kThet;
+    double dynold = 0.0, thqold = 0.0;
+    for (;;) {
+      if (*newt >= kNit) break;
+      tmp_ = y_ + z1_;
+      sys.rhs(t_ + c.c1 * h, tmp_, g1_);
+      tmp_ = y_ + z2_;
+      sys.rhs(t_ + c.c2 * h, tmp_, g2_);
+      tmp_ = y_ + z3_;
+      sys.rhs(t_new, tmp_, g3_);
+      counters_.rhs_evaluations += 3;
+      if (!g1_.allFinite() || !g2_.allFinite() || !g3_.allFinite()) break;
+      // Right-hand sides of the transformed systems (stored in z1_, z2_, z3_).
+      z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_ - fac1 * w1_;
+      z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_ - alphn * w2_ + betan * w3_;
+      z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_ - alphn * w3_ - betan * w2_;
+      solve_real(z1_);
+      solve_complex(z2_, z3_);
+      ++*newt;
+      double dyno = 0.0;
+      for (int i = 0; i < n_; ++i) {
+        const double a = z1_[i] / scal_[i], b = z2_[i] / scal_[i], d = z3_[i] / scal_[i];
+        dyno += a * a + b * b + d * d;
+      }
+      dyno = std::sqrt(dyno / (3.0 * n_));
+      if (!std::isfinite(dyno)) break;
+      if (*newt > 1 && *newt < kNit) {
+        const double thq = dyno / dynold;
+        theta_ = *newt == 2 ? thq : std::sqrt(thq * thqold);
+        thqold = thq;
+        if (theta_ < 0.99) {
+          faccon_ = theta_ / (1.0 - theta_);
+          const double dyth = faccon_ * dyno * std::pow(theta_, kNit - 1 - *newt) / fnewt_;
+          if (dyth >= 1.0) {
+            const double qnewt = std::clamp(dyth, 1e-4, 20.0);
+            *h_slow = 0.8 * std::pow(qnewt, -1.0 / (4.0 + kNit - 1 - *newt)) * h;
+            return NewtonOutcome::kSlow;
+          }
+        } else {
+          break;  // diverging
+        }
+      }
+      dynold = std::max(dyno, std::numeric_limits<double>::epsilon());
+      w1_ += z1_;
+      w2_ += z2_;
+      w3_ += z3_;
+      z1_ = c.t11 * w1_ + c.t12 * w2_ + c.t13 * w3_;
+      z2_ = c.t21 * w1_ + c.t22 * w2_ + c.t23 * w3_;
+      z3_ = c.t31 * w1_ + w2_;
+      if (faccon_ * dyno <= fnewt_) return NewtonOutcome::kConverged;
+    }
+    return NewtonOutcome::kFailed;
+  }
+
+  /// Accepts a step of error err < 1 and chooses the next step size from the proposal
+  /// h_new = h / quot (Gustafsson's predictive controller) and whether to keep the Jacobian.
+  void accept_and_adapt(const OdeSystem& sys, double h, double t_new, double h_adapted, double err,
+                        double quot, double h_new, bool reject) {
+    if (!first_ && h_acc_ > 0.0) {  // Gustafsson's predictive controller
+      double facgus = (h_acc_ / h) * std::pow(err * err / err_acc_, 0.25) / kSafe;
+      facgus = std::clamp(facgus, kFacR, kFacL);
+      quot = std::max(quot, facgus);
+      h_new = h / quot;
+    }
+    h_acc_ = h;
+    err_acc_ = std::max(1e-2, err);
+    first_ = false;
+    accept(sys, h, t_new);
+    h_new = std::min(h_new, h_max_);
+    if (reject) h_new = std::min(h_new, h);
+    const double qt = h_new / h;
+    if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;    // keep h and the LU
+    if (h < h_adapted && !reject) h_new = std::max(h_new, h_adapted);  // clipped at t_limit
+    h_ = h_new;
+    // Reuse the Jacobian while the Newton iteration converges this fast.
+    if (theta_ <= kThet) {
+      jacobian_fresh_ = false;
+    } else {
+      have_jacobian_ = false;
+    }
+  }
+
   void evaluate_jacobian(const OdeSystem& sys) {
     detail::evaluate_jacobian(sys, t_, y_, f0_, j_sparse_, tmp_, g1_, counters_);
     assert(j_sparse_.rows() == y_.size() && j_sparse_.cols() == y_.size());
