@@ -171,8 +171,9 @@ def check(exe):
         with tempfile.TemporaryDirectory() as tmp:
             code = run_case(exe, name, tmp)
             with open(os.path.join(gold, "exit_code")) as f:
-                if int(f.read()) != code:
-                    failures.append(f"{name}: exit code {code}, golden {f.read()}")
+                want_code = int(f.read())
+            if want_code != code:
+                failures.append(f"{name}: exit code {code}, golden {want_code}")
             want = kept(os.listdir(gold))
             got = kept(os.listdir(tmp))
             if want != got:
