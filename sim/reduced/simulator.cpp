@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
+#include <memory>
+#include <span>
 #include <utility>
 
 #include "sim/control/stance_planner.hpp"

@@ -88,24 +88,21 @@ class Ball final : public run::HybridModel {
 
 }  // namespace hybrid_run_test
 
-using hybrid_run_test::Ball;
-using hybrid_run_test::kG;
-
 TEST_CASE("run_hybrid: bounces at the closed-form times, state changed at each event", "[run]") {
-  Ball ball;
+  hybrid_run_test::Ball ball;
   ball.options.rtol = ball.options.atol = 1e-10;
   auto stepper = pronk::ode::make_stepper(ball.options, 2);
   pronk::ode::Vec y0(2);
   y0 << 1.0, 0.0;
   const pronk::run::HybridEnd end = pronk::run::run_hybrid(ball, *stepper, 0.0, y0);
   // Drop from 1 m: first impact at sqrt(2/g), then flights of 2 v_k / g, v_k halved each time.
-  const double v0 = std::sqrt(2.0 * kG);
-  double t = v0 / kG, v = v0;
+  const double v0 = std::sqrt(2.0 * hybrid_run_test::kG);
+  double t = v0 / hybrid_run_test::kG, v = v0;
   REQUIRE(ball.bounces.size() == 4);
   for (double tb : ball.bounces) {
     CHECK(tb == Approx(t).epsilon(1e-9));
     v *= 0.5;
-    t += 2.0 * v / kG;
+    t += 2.0 * v / hybrid_run_test::kG;
   }
   CHECK(end.t == ball.bounces.back());
   CHECK(end.y[1] == Approx(0.5 * 0.5 * 0.5 * 0.5 * v0).epsilon(1e-8));  // changed state kept
@@ -116,7 +113,7 @@ TEST_CASE("run_hybrid: bounces at the closed-form times, state changed at each e
 
 TEST_CASE("run_hybrid: scheduled times, a pending event and an observer stop", "[run]") {
   SECTION("a kick at a scheduled time and the run's end") {
-    Ball ball;
+    hybrid_run_test::Ball ball;
     ball.max_bounces = 100;
     ball.t_kick = 0.2;
     ball.kick = 1.0;
@@ -129,10 +126,10 @@ TEST_CASE("run_hybrid: scheduled times, a pending event and an observer stop", "
     CHECK(ball.pending_handled == 1);
     CHECK(ball.bounces.empty());
     CHECK(end.t == 0.3);
-    CHECK(end.y[1] == Approx(-kG * 0.3 + 1.0).epsilon(1e-9));
+    CHECK(end.y[1] == Approx(-hybrid_run_test::kG * 0.3 + 1.0).epsilon(1e-9));
   }
   SECTION("the observer stops the integration: on_failure, no restart") {
-    Ball ball;
+    hybrid_run_test::Ball ball;
     ball.steps.limit = 3;
     ball.options.method = pronk::ode::Method::kRk4;
     ball.options.h_fixed = 1e-2;
