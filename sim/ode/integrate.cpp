@@ -122,13 +122,22 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
       stepper.dense(t_fire, y_event);
       stepper.reset(sys, t_fire, y_event);
       ++stepper.mutable_counters().events;
-      result.reason = StopReason::kEvent;
+      result.reason = observer != nullptr && observer->stop_requested() ? StopReason::kStopped
+                                                                        : StopReason::kEvent;
       result.event_index = fired;
       result.t = t_fire;
       result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
       return result;
     }
-    if (observer != nullptr) observer->on_step(stepper, t1);
+    if (observer != nullptr) {
+      observer->on_step(stepper, t1);
+      if (observer->stop_requested()) {
+        result.reason = StopReason::kStopped;
+        result.t = t1;
+        result.attempts = c.steps_accepted + c.steps_rejected - attempts_at_start;
+        return result;
+      }
+    }
     g_prev.swap(g_new);
   }
   result.reason = StopReason::kReachedEnd;

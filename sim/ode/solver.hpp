@@ -139,7 +139,16 @@ std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
 /// Why integrate() returned.
 /// kMaxSteps: the stepper's counters (accepted + rejected, since it was made) reached
 /// SolverOptions::max_steps. kCrawling: SolverOptions::crawling() (the crawl guard).
-enum class StopReason { kReachedEnd, kEvent, kStepSizeCollapse, kNonFinite, kMaxSteps, kCrawling };
+/// kStopped: the observer asked to stop (StepObserver::stop_requested) after a step.
+enum class StopReason {
+  kReachedEnd,
+  kEvent,
+  kStepSizeCollapse,
+  kNonFinite,
+  kMaxSteps,
+  kCrawling,
+  kStopped
+};
 
 struct IntegrateResult {
   StopReason reason = StopReason::kReachedEnd;
@@ -160,6 +169,9 @@ class StepObserver {
   virtual ~StepObserver() = default;
   /// Called after each accepted step; dense() is valid on [t_prev(), t_stop].
   virtual void on_step(const Stepper& stepper, double t_stop) = 0;
+  /// Checked after each on_step: true ends integrate() with StopReason::kStopped at the
+  /// step's end (e.g. a monitor that found the run diverging).
+  virtual bool stop_requested() const { return false; }
 };
 
 IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,

@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
 #include "sim/pseudorigid/system.hpp"
+#include "sim/run/hybrid_run.hpp"
 
 namespace pronk::pseudorigid {
 
@@ -113,194 +115,241 @@ class SolverView final : public ode::OdeSystem {
   ode::Vec scale_;  ///< atol multiplier per state: 1 for positions, the mass for momenta
 };
 
-}  // namespace
+/// Gauss-Legendre 3-point nodes and weights on [0, 1].
+const double kGaussNodes[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
+const double kGaussWeights[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
 
-RunSummary simulate(const Mechanism& m) {
-  const auto t0 = std::chrono::steady_clock::now();
-  RunSummary out;
-  const SimulationOptions& opt = m.simulation;
-  MechanismSystem sys(m);
-  const int n = sys.dimension();
-  ode::Vec y = m.initial_state();
-  if (opt.check_jacobian) out.jacobian_check_error = jacobian_check(sys, 0.0, y);
+/// One mechanism run on the hybrid loop: segments between the breakpoints of the
+/// time-windowed forces, no state events. Along the accepted steps (the loop's step observer)
+/// it integrates the energy flows, samples the output grid, keeps the monitors and checks
+/// divergence (non-finite state, energy blow-up, crawl, step budget), stopping the loop.
+class MechanismRun final : public run::HybridModel, public ode::StepObserver {
+ public:
+  MechanismRun(const Mechanism& m, MechanismSystem& sys, RunSummary& out)
+      : m_(m),
+        opt_(m.simulation),
+        sys_(sys),
+        view_(sys, m),
+        out_(out),
+        bps_(breakpoints(m)),
+        yq_(sys.dimension()) {
+    // The loop's own budget checks stay off: this run checks the whole run's step attempts
+    // against the simulated time after every step (on_step).
+    guards_off_ = opt_.solver;
+    guards_off_.max_steps = std::numeric_limits<long>::max();
+    guards_off_.max_steps_per_second = 0.0;
+    sys_.set_segment_time(0.5 * bps_.front());
+    out_.max_surface_force.assign(m.surfaces.size(), 0.0);
+  }
 
-  const std::vector<double> bps = breakpoints(m);
-  sys.set_segment_time(0.5 * bps.front());
-  out.max_surface_force.assign(m.surfaces.size(), 0.0);
+  /// Records the initial state and sets the energy scale; returns the solver options (verlet's
+  /// energy budget in joules).
+  ode::SolverOptions begin(const ode::Vec& y);
+  /// Drops non-finite samples and sets the drift monitor, t_reached and the counters.
+  void finish(const ode::Stepper& stepper);
+  /// |E + dissipated - actuator work - balance at t = 0| at sample i [J].
+  double sample_drift(size_t i) const {
+    return std::abs(out_.energies[i].total() + out_.dissipated[i] - out_.actuator_work[i] -
+                    balance0_);
+  }
+  bool diverged() const { return diverged_; }
 
-  double dissipated = 0.0, work = 0.0;
-  auto record = [&](double t, const ode::Vec& ys, double dissipated_t, double work_t,
-                    const Energies* known = nullptr) {
-    out.t.push_back(t);
-    out.y.push_back(ys);
-    out.energies.push_back(known != nullptr ? *known : sys.energies(ys));
-    out.dissipated.push_back(dissipated_t);
-    out.actuator_work.push_back(work_t);
-  };
-  // Monitors of a state; returns its energies (one pass over the surfaces for all three).
-  auto monitor = [&](const ode::Vec& ys) {
+  const ode::OdeSystem& system() const override { return view_; }
+  const ode::SolverOptions& integration_options() const override { return guards_off_; }
+  void start(const ode::Stepper& stepper, const ode::Vec&) override {
+    booked_a_ = stepper.booked_dissipation();
+  }
+  double segment_end(double) const override { return bps_[bi_]; }
+  std::span<const ode::EventFunction* const> events() const override { return {}; }
+  ode::StepObserver* observer() override { return this; }
+  void on_failure(const run::Segment& seg, const ode::Vec&, const ode::Stepper& st) override {
+    if (seg.integrated.reason == ode::StopReason::kStopped) return;  // on_step said why
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%s at t = %.9g s (step %.3g s)",
+                  seg.integrated.reason == ode::StopReason::kNonFinite ? "non-finite state"
+                                                                       : "step-size collapse",
+                  st.t(), st.h());
+    diverge(buf);
+  }
+  run::Next on_segment_end(const run::Segment& seg, ode::Vec&, const ode::Stepper&) override {
+    if (++bi_ == bps_.size()) return run::Next::kStop;
+    sys_.set_segment_time(0.5 * (seg.t + bps_[bi_]));
+    return run::Next::kContinue;
+  }
+
+  void on_step(const ode::Stepper& stepper, double t_stop) override;
+  bool stop_requested() const override { return diverged_; }
+
+ private:
+  void diverge(const std::string& why) {
+    out_.status = RunStatus::kDiverged;
+    out_.reason = why;
+    diverged_ = true;
+  }
+  void record(double t, const ode::Vec& ys, double dissipated_t, double work_t,
+              const Energies* known = nullptr) {
+    out_.t.push_back(t);
+    out_.y.push_back(ys);
+    out_.energies.push_back(known != nullptr ? *known : sys_.energies(ys));
+    out_.dissipated.push_back(dissipated_t);
+    out_.actuator_work.push_back(work_t);
+  }
+  /// Monitors of a state; returns its energies (one pass over the surfaces for all three).
+  Energies monitor(const ode::Vec& ys) {
     Energies e;
     StateMonitors mon;
-    sys.observe(ys, &e, &mon, &out.max_surface_force);
-    out.max_strain = std::max(out.max_strain, mon.max_strain);
-    out.max_penetration = std::max(out.max_penetration, mon.max_penetration);
+    sys_.observe(ys, &e, &mon, &out_.max_surface_force);
+    out_.max_strain = std::max(out_.max_strain, mon.max_strain);
+    out_.max_penetration = std::max(out_.max_penetration, mon.max_penetration);
     return e;
-  };
+  }
+  /// Adds the dissipation and actuator work over [ta, te] (te <= the step's end) to *d, *w:
+  /// by Gauss-Legendre on the step's dense output, or, for a stepper that books the
+  /// dissipation itself (OdeSystem::dissipate; linear in time inside a step), from its books
+  /// (the actuator work is then the only integral).
+  void flows(const ode::Stepper& st, double te, double booked_b, double dissipated_a, double* d,
+             double* w) {
+    const double ta = st.t_prev(), tb = st.t();
+    const bool booked = st.books_dissipation();
+    if (booked) *d = dissipated_a + (booked_b - booked_a_) * (te - ta) / (tb - ta);
+    if (!sys_.has_power_flows() || (booked && !sys_.has_actuator_work())) return;
+    for (int q = 0; q < 3; ++q) {
+      st.dense(ta + kGaussNodes[q] * (te - ta), yq_);
+      const PowerFlows p = sys_.power(yq_);
+      if (!booked) *d += kGaussWeights[q] * (te - ta) * p.dissipated;
+      *w += kGaussWeights[q] * (te - ta) * p.actuator;
+    }
+  }
+  void check_step(double tb, const Energies& eb, const ode::SolverCounters& c);
+
+  const Mechanism& m_;
+  const SimulationOptions& opt_;
+  MechanismSystem& sys_;
+  const SolverView view_;
+  RunSummary& out_;
+  const std::vector<double> bps_;
+  size_t bi_ = 0;  ///< the breakpoint the current segment ends at
+  ode::SolverOptions guards_off_;
+  ode::Vec yq_;
+  double dissipated_ = 0.0, work_ = 0.0;
+  double booked_a_ = 0.0;  ///< the stepper's booked dissipation at the current step's start [J]
+  double next_out_ = 0.0;
+  double balance0_ = 0.0, blowup_ = 0.0;
+  bool diverged_ = false;
+};
+
+ode::SolverOptions MechanismRun::begin(const ode::Vec& y) {
   record(0.0, y, 0.0, 0.0);
   monitor(y);
-  const Energies e0 = out.energies.front();
-  const double balance0 = e0.total();
-  {
-    // Energy scale: motion and stored energy, plus lifting the whole mass over the scene size.
-    Eigen::Vector3d lo = m.masses[0].position, hi = lo;
-    for (const Mass& ms : m.masses) {
-      lo = lo.cwiseMin(ms.position);
-      hi = hi.cwiseMax(ms.position);
-    }
-    for (const Anchor& a : m.anchors) {
-      lo = lo.cwiseMin(a.position);
-      hi = hi.cwiseMax(a.position);
-    }
-    for (const Surface& s : m.surfaces) {
-      if (s.body >= 0) continue;
-      lo = lo.cwiseMin(s.point);
-      hi = hi.cwiseMax(s.point);
-    }
-    out.energy_scale = e0.kinetic + e0.internal + e0.leg + e0.other + e0.contact +
-                       m.total_mass() * m.gravity.norm() * (hi - lo).norm() + 1e-9;
+  const Energies e0 = out_.energies.front();
+  balance0_ = e0.total();
+  // Energy scale: motion and stored energy, plus lifting the whole mass over the scene size.
+  Eigen::Vector3d lo = m_.masses[0].position, hi = lo;
+  for (const Mass& ms : m_.masses) {
+    lo = lo.cwiseMin(ms.position);
+    hi = hi.cwiseMax(ms.position);
   }
-  const double blowup = opt.energy_blowup_factor * out.energy_scale;
+  for (const Anchor& a : m_.anchors) {
+    lo = lo.cwiseMin(a.position);
+    hi = hi.cwiseMax(a.position);
+  }
+  for (const Surface& s : m_.surfaces) {
+    if (s.body >= 0) continue;
+    lo = lo.cwiseMin(s.point);
+    hi = hi.cwiseMax(s.point);
+  }
+  out_.energy_scale = e0.kinetic + e0.internal + e0.leg + e0.other + e0.contact +
+                      m_.total_mass() * m_.gravity.norm() * (hi - lo).norm() + 1e-9;
+  blowup_ = opt_.energy_blowup_factor * out_.energy_scale;
+  next_out_ = opt_.output_interval;
   // Method verlet with an energy tolerance: the bound on its bounded term in joules.
-  ode::SolverOptions solver = opt.solver;
-  if (solver.method == ode::Method::kVerlet && opt.energy_tol > 0.0) {
-    solver.verlet_energy_budget = opt.energy_tol * out.energy_scale;
+  ode::SolverOptions solver = opt_.solver;
+  if (solver.method == ode::Method::kVerlet && opt_.energy_tol > 0.0) {
+    solver.verlet_energy_budget = opt_.energy_tol * out_.energy_scale;
   }
-  auto stepper = ode::make_stepper(solver, n);
-  const SolverView view(sys, m);
-  stepper->reset(view, 0.0, y);
+  return solver;
+}
 
-  // Gauss-Legendre 3-point nodes and weights on [0, 1].
-  const double gl_s[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
-  const double gl_w[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-  ode::Vec yq(n);
-  double next_out = opt.output_interval;
-  bool diverged = false;
-  char buf[400];
-  auto diverge = [&](const std::string& why) {
-    out.status = RunStatus::kDiverged;
-    out.reason = why;
-    diverged = true;
-  };
-  double t = 0.0;
-  double booked_a = stepper->booked_dissipation();  // at the start of the current step [J]
-  for (size_t bi = 0; bi < bps.size() && !diverged; ++bi) {
-    const double bp = bps[bi];
-    if (bi > 0) {
-      sys.set_segment_time(0.5 * (t + bp));
-      stepper->reset(view, t, stepper->y());
-    }
-    while (stepper->t() < bp) {
-      const ode::StepStatus st = stepper->step(view, bp);
-      if (st != ode::StepStatus::kOk) {
-        std::snprintf(buf, sizeof buf, "%s at t = %.9g s (step %.3g s)",
-                      st == ode::StepStatus::kNonFinite ? "non-finite state" : "step-size collapse",
-                      stepper->t(), stepper->h());
-        diverge(buf);
-        break;
-      }
-      const double ta = stepper->t_prev(), tb = stepper->t();
-      const ode::Vec& yb = stepper->y();
-      const double dissipated_a = dissipated, work_a = work;
-      if (!yb.allFinite()) {
-        std::snprintf(buf, sizeof buf, "non-finite state at t = %.9g s", tb);
-        diverge(buf);
-        break;
-      }
-      // Dissipation and actuator work over [ta, te] (te <= tb) by Gauss-Legendre on the
-      // step's dense output.
-      // A stepper that applies the dissipation split books the dissipated energy itself
-      // (OdeSystem::dissipate; linear in time inside a step); the actuator work is then
-      // the only integral.
-      const bool booked = stepper->books_dissipation();
-      const double booked_b = stepper->booked_dissipation();
-      auto flows = [&](double te, double* d, double* w) {
-        if (booked) *d = dissipated_a + (booked_b - booked_a) * (te - ta) / (tb - ta);
-        if (!sys.has_power_flows() || (booked && !sys.has_actuator_work())) return;
-        for (int q = 0; q < 3; ++q) {
-          stepper->dense(ta + gl_s[q] * (te - ta), yq);
-          const PowerFlows p = sys.power(yq);
-          if (!booked) *d += gl_w[q] * (te - ta) * p.dissipated;
-          *w += gl_w[q] * (te - ta) * p.actuator;
-        }
-      };
-      flows(tb, &dissipated, &work);
-      const Energies eb = monitor(yb);
-      while (next_out <= tb * (1.0 + 1e-12) && next_out <= opt.t_end * (1.0 + 1e-12)) {
-        const double ts = std::min(next_out, tb);
-        // A sample inside the step pairs its energies with the flows up to the sample time,
-        // not up to the step end (that mismatch showed as a balance drift of the order of
-        // one step's dissipation: 2.5 % of the energy in a damped two-mass oscillator).
-        if (ts < tb) {
-          double ds = dissipated_a, ws = work_a;
-          flows(ts, &ds, &ws);
-          stepper->dense(ts, yq);
-          record(next_out, yq, ds, ws);
-        } else {
-          record(next_out, yb, dissipated, work, &eb);  // the step's end: state and energies
-        }
-        next_out = opt.output_interval * static_cast<double>(out.t.size());
-      }
-      booked_a = booked_b;
-      const double balance = eb.total() + dissipated - work;
-      const double drift = std::abs(balance - balance0);
-      if (!std::isfinite(balance) || drift > blowup) {
-        std::snprintf(buf, sizeof buf,
-                      "energy blow-up at t = %.9g s: energy balance drifted by %.3g J (scale %.3g "
-                      "J); the solver is beyond its stability limit or the step is too large",
-                      tb, drift, out.energy_scale);
-        diverge(buf);
-        break;
-      }
-      const ode::SolverCounters& c = stepper->counters();
-      const long attempts = c.steps_accepted + c.steps_rejected;  // the whole run's
-      if (opt.solver.crawling(attempts, tb)) {
-        diverge(opt.solver.crawl_reason(attempts, tb, tb));
-        break;
-      }
-      if (attempts >= opt.solver.max_steps) {
-        diverge(opt.solver.step_limit_reason(attempts, tb));
-        break;
-      }
-    }
-    t = stepper->t();
+void MechanismRun::on_step(const ode::Stepper& stepper, double) {
+  const double tb = stepper.t();
+  const ode::Vec& yb = stepper.y();
+  const double dissipated_a = dissipated_, work_a = work_;
+  if (!yb.allFinite()) {
+    char buf[100];
+    std::snprintf(buf, sizeof buf, "non-finite state at t = %.9g s", tb);
+    diverge(buf);
+    return;
   }
+  const double booked_b = stepper.booked_dissipation();
+  flows(stepper, tb, booked_b, dissipated_a, &dissipated_, &work_);
+  const Energies eb = monitor(yb);
+  while (next_out_ <= tb * (1.0 + 1e-12) && next_out_ <= opt_.t_end * (1.0 + 1e-12)) {
+    const double ts = std::min(next_out_, tb);
+    // A sample inside the step pairs its energies with the flows up to the sample time,
+    // not up to the step end (that mismatch showed as a balance drift of the order of
+    // one step's dissipation: 2.5 % of the energy in a damped two-mass oscillator).
+    if (ts < tb) {
+      double ds = dissipated_a, ws = work_a;
+      flows(stepper, ts, booked_b, dissipated_a, &ds, &ws);
+      stepper.dense(ts, yq_);
+      record(next_out_, yq_, ds, ws);
+    } else {
+      record(next_out_, yb, dissipated_, work_, &eb);  // the step's end: state and energies
+    }
+    next_out_ = opt_.output_interval * static_cast<double>(out_.t.size());
+  }
+  booked_a_ = booked_b;
+  check_step(tb, eb, stepper.counters());
+}
+
+/// Divergence after an accepted step ending at tb: energy blow-up, crawl, step budget.
+void MechanismRun::check_step(double tb, const Energies& eb, const ode::SolverCounters& c) {
+  const double balance = eb.total() + dissipated_ - work_;
+  const double drift = std::abs(balance - balance0_);
+  if (!std::isfinite(balance) || drift > blowup_) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "energy blow-up at t = %.9g s: energy balance drifted by %.3g J (scale %.3g "
+                  "J); the solver is beyond its stability limit or the step is too large",
+                  tb, drift, out_.energy_scale);
+    diverge(buf);
+    return;
+  }
+  const long attempts = c.steps_accepted + c.steps_rejected;  // the whole run's
+  if (opt_.solver.crawling(attempts, tb)) {
+    diverge(opt_.solver.crawl_reason(attempts, tb, tb));
+    return;
+  }
+  if (attempts >= opt_.solver.max_steps) diverge(opt_.solver.step_limit_reason(attempts, tb));
+}
+
+void MechanismRun::finish(const ode::Stepper& stepper) {
   // Samples only hold finite values: a diverged run keeps the samples before divergence.
-  while (!out.y.empty() &&
-         !(out.y.back().allFinite() && std::isfinite(out.energies.back().total()))) {
-    out.t.pop_back();
-    out.y.pop_back();
-    out.energies.pop_back();
-    out.dissipated.pop_back();
-    out.actuator_work.pop_back();
+  while (!out_.y.empty() &&
+         !(out_.y.back().allFinite() && std::isfinite(out_.energies.back().total()))) {
+    out_.t.pop_back();
+    out_.y.pop_back();
+    out_.energies.pop_back();
+    out_.dissipated.pop_back();
+    out_.actuator_work.pop_back();
   }
-  // |E + dissipated - actuator work - balance at t = 0| at sample i [J].
-  auto sample_drift = [&](size_t i) {
-    return std::abs(out.energies[i].total() + out.dissipated[i] - out.actuator_work[i] - balance0);
-  };
-  for (size_t i = 0; i < out.t.size(); ++i) {
-    out.energy_drift = std::max(out.energy_drift, sample_drift(i));
+  for (size_t i = 0; i < out_.t.size(); ++i) {
+    out_.energy_drift = std::max(out_.energy_drift, sample_drift(i));
   }
-  out.t_reached = diverged ? (out.t.empty() ? 0.0 : out.t.back()) : stepper->t();
-  out.counters = stepper->counters();
-  out.zero_length_triggers = sys.zero_length_triggers();
-  if (!std::isfinite(out.max_strain)) out.max_strain = 1e300;
-  if (!std::isfinite(out.max_penetration)) out.max_penetration = 1e300;
-  for (double& f : out.max_surface_force) {
+  out_.t_reached = diverged_ ? (out_.t.empty() ? 0.0 : out_.t.back()) : stepper.t();
+  out_.counters = stepper.counters();
+  out_.zero_length_triggers = sys_.zero_length_triggers();
+  if (!std::isfinite(out_.max_strain)) out_.max_strain = 1e300;
+  if (!std::isfinite(out_.max_penetration)) out_.max_penetration = 1e300;
+  for (double& f : out_.max_surface_force) {
     if (!std::isfinite(f)) f = 1e300;
   }
-  if (!std::isfinite(out.jacobian_check_error)) out.jacobian_check_error = 1e300;
-  // Warnings: near-degenerate bodies, the accuracy monitors against their budgets, and the
-  // zero-length rule.
+  if (!std::isfinite(out_.jacobian_check_error)) out_.jacobian_check_error = 1e300;
+}
+
+/// near_degenerate_inertia: a slender body whose spin rate the internal strain perturbs.
+void warn_slender_bodies(const Mechanism& m, RunSummary& out) {
+  char buf[400];
   for (const Body& b : m.bodies) {
     const Eigen::Vector3d moments =
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(b.inertia, Eigen::EigenvaluesOnly)
@@ -322,35 +371,45 @@ RunSummary simulate(const Mechanism& m) {
       out.warnings["near_degenerate_inertia"] = buf;
     }
   }
-  if (out.status == RunStatus::kCompleted &&
-      out.energy_drift > kEnergyDriftWarning * out.energy_scale) {
-    // Below the blow-up factor, but not solver accuracy either: e.g. explicit Euler slowly
-    // pumping the internal vibration (1e-2 ... 10 of the scale before it is a blow-up).
-    const double end_drift = out.t.empty() ? 0.0 : sample_drift(out.t.size() - 1);
-    char text[800];
-    if (stepper->books_dissipation() && end_drift <= kEnergyDriftWarning * out.energy_scale) {
-      // Verlet's energy departs from its exactly balanced modified energy by
-      // h^2 |F|^2 / 8m where large forces act on light masses, and returns from it (the
-      // quad hopper drop at h = 5e-4 s: 4.4e-2 of the drop energy inside impacts, 2.4e-5 at
-      // the flight apexes).
-      std::snprintf(text, sizeof text,
-                    "the energy balance departed by %.3g J, %.3g of the energy scale %.3g J, at "
-                    "its worst sample but by %.3g J at the end: method verlet's energy carries "
-                    "the bounded term h^2 |F|^2 / 8m where large forces act on light masses "
-                    "(impacts) and returns from it; read the balance between such events, or set "
-                    "simulation.energy_tol (sub-steps the impacts) or halve h_fixed",
-                    out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale,
-                    end_drift);
-    } else {
-      std::snprintf(text, sizeof text,
-                    "the energy balance drifted by %.3g J, %.3g of the energy scale %.3g J: the "
-                    "step is too large or the tolerance too loose (an explicit solver near its "
-                    "stability limit, or the min_norm ghost transfer); do not read this run as "
-                    "physics",
-                    out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale);
-    }
-    out.warnings["energy_balance_drift"] = text;
+}
+
+/// energy_balance_drift: a completed run whose balance drifted by more than 1e-2 of the scale.
+/// end_drift: the drift at the last sample [J]; verlet: the stepper books the dissipation.
+void warn_energy_drift(RunSummary& out, double end_drift, bool verlet) {
+  if (!(out.status == RunStatus::kCompleted &&
+        out.energy_drift > kEnergyDriftWarning * out.energy_scale)) {
+    return;
   }
+  // Below the blow-up factor, but not solver accuracy either: e.g. explicit Euler slowly
+  // pumping the internal vibration (1e-2 ... 10 of the scale before it is a blow-up).
+  char text[800];
+  if (verlet && end_drift <= kEnergyDriftWarning * out.energy_scale) {
+    // Verlet's energy departs from its exactly balanced modified energy by
+    // h^2 |F|^2 / 8m where large forces act on light masses, and returns from it (the
+    // quad hopper drop at h = 5e-4 s: 4.4e-2 of the drop energy inside impacts, 2.4e-5 at
+    // the flight apexes).
+    std::snprintf(text, sizeof text,
+                  "the energy balance departed by %.3g J, %.3g of the energy scale %.3g J, at "
+                  "its worst sample but by %.3g J at the end: method verlet's energy carries "
+                  "the bounded term h^2 |F|^2 / 8m where large forces act on light masses "
+                  "(impacts) and returns from it; read the balance between such events, or set "
+                  "simulation.energy_tol (sub-steps the impacts) or halve h_fixed",
+                  out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale,
+                  end_drift);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "the energy balance drifted by %.3g J, %.3g of the energy scale %.3g J: the "
+                  "step is too large or the tolerance too loose (an explicit solver near its "
+                  "stability limit, or the min_norm ghost transfer); do not read this run as "
+                  "physics",
+                  out.energy_drift, out.energy_drift / out.energy_scale, out.energy_scale);
+  }
+  out.warnings["energy_balance_drift"] = text;
+}
+
+/// The accuracy monitors against their budgets, and the zero-length rule.
+void warn_budgets(const SimulationOptions& opt, RunSummary& out) {
+  char buf[400];
   if (out.max_strain > opt.strain_budget) {
     std::snprintf(buf, sizeof buf,
                   "max internal strain %.3g exceeds the strain budget %.3g: the bodies flexed, "
@@ -374,6 +433,26 @@ RunSummary simulate(const Mechanism& m) {
                   out.zero_length_triggers, opt.zero_length_epsilon);
     out.warnings["zero_length_rule"] = buf;
   }
+}
+
+}  // namespace
+
+RunSummary simulate(const Mechanism& m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunSummary out;
+  MechanismSystem sys(m);
+  const ode::Vec y = m.initial_state();
+  if (m.simulation.check_jacobian) out.jacobian_check_error = jacobian_check(sys, 0.0, y);
+  MechanismRun hybrid(m, sys, out);
+  auto stepper = ode::make_stepper(hybrid.begin(y), sys.dimension());
+  run::run_hybrid(hybrid, *stepper, 0.0, y);
+  hybrid.finish(*stepper);
+  // Warnings: near-degenerate bodies, the accuracy monitors against their budgets, and the
+  // zero-length rule.
+  warn_slender_bodies(m, out);
+  warn_energy_drift(out, out.t.empty() ? 0.0 : hybrid.sample_drift(out.t.size() - 1),
+                    stepper->books_dissipation());
+  warn_budgets(m.simulation, out);
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
+#include <memory>
+#include <span>
+#include <utility>
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/reduced/rigid_body.hpp"
+#include "sim/reduced/run_record.hpp"
+#include "sim/run/hybrid_run.hpp"
 
 namespace pronk::reduced {
 
@@ -129,263 +133,245 @@ class SmallAngleWatch final : public ode::StepObserver {
   ode::StepObserver* next_;
 };
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
+/// One reduced-model run on the hybrid loop: flight and stance segments, touchdown
+/// (controller: an impulse or a stance of constant leg forces), apex, stance end,
+/// disturbances and falls.
+class ReducedRun final : public run::HybridModel {
+ public:
+  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3 };
+
+  ReducedRun(const scene::Scene& scene, const RunOptions& options)
+      : scene_(scene),
+        options_(options),
+        pulse_(scene.model == scene::ModelKind::kPulse),
+        model_(scene, /*impulse_quadrature=*/pulse_),
+        rhs_(model_),
+        body_controller_(scene.controller, scene.gravity, scene.legs.length, !scene.legs.body_only,
+                         !model_.layout.quaternion, pulse_ ? scene.pulse.duration : 0.0),
+        leg_controller_(control::make_leg_controller(scene)),
+        touchdown_(scene.legs.length),
+        fall_low_(scene.simulation.fall_min_height),
+        fall_tilt_(model_.layout, scene.simulation.fall_max_tilt),
+        flight_events_{&touchdown_, &apex_, &fall_low_, &fall_tilt_},
+        stance_events_{&apex_, &fall_low_, &fall_tilt_},
+        sampler_(model_, scene, &result.trajectory),
+        angle_watch_(model_.layout, options.record_trajectory ? &sampler_ : nullptr),
+        energy_scale_(scene.body.mass * scene.gravity *
+                      std::max(scene.controller.hop_height, 1e-3)),
+        pending_touchdown_(options.start_at_touchdown) {}
+
+  const RigidBodyModel& model() const { return model_; }
+  long touchdowns() const { return touchdowns_; }
+  long touchdown_events() const { return touchdown_events_; }
+  /// Closes the stride in progress; t_next < 0: the run ended before the next touchdown.
+  void finish_stride(double t_next) {
+    if (!have_stride_) return;
+    close_stride(current_, t_next);
+    if (options_.record_strides) result.strides.push_back(current_);
+    have_stride_ = false;
+  }
+
+  const ode::OdeSystem& system() const override { return rhs_; }
+  const ode::SolverOptions& integration_options() const override {
+    return scene_.simulation.solver;
+  }
+  void start(const ode::Stepper&, const ode::Vec& y) override {
+    flight_energy_ = model_.energy(y);
+    if (options_.record_trajectory) sampler_.start(y);
+    if (small_angle() && y.segment<3>(6).cwiseAbs().maxCoeff() > kSmallAngleLimit) {
+      angle_watch_.exceeded = true;  // the initial attitude already leaves the range
+    }
+  }
+  bool take_pending_event() override { return std::exchange(pending_touchdown_, false); }
+  double segment_end(double) const override {
+    double t_target = scene_.simulation.duration;
+    if (next_disturbance_ < scene_.disturbances.size()) {
+      t_target = std::min(t_target, scene_.disturbances[next_disturbance_].time);
+    }
+    if (stance_) t_target = std::min(t_target, stance_end_);
+    return t_target;
+  }
+  std::span<const ode::EventFunction* const> events() const override {
+    return stance_ ? std::span<const ode::EventFunction* const>(stance_events_)
+                   : std::span<const ode::EventFunction* const>(flight_events_);
+  }
+  ode::StepObserver* observer() override {
+    return small_angle()                ? &angle_watch_
+           : options_.record_trajectory ? static_cast<ode::StepObserver*>(&sampler_)
+                                        : nullptr;
+  }
+  void on_failure(const run::Segment& seg, const ode::Vec&, const ode::Stepper& st) override {
+    count_angle_warning();
+    result.status = RunStatus::kDiverged;
+    result.reason = run::failure_reason(seg, st, scene_.simulation.solver);
+  }
+  run::Next on_segment_end(const run::Segment& seg, ode::Vec& y, const ode::Stepper&) override {
+    count_angle_warning();
+    const double t = seg.t;
+    const int event = seg.pending        ? kTouchdown
+                      : seg.event() >= 0 ? (stance_ ? seg.event() + 1 : seg.event())
+                                         : -1;
+    if (model_.layout.quaternion) {
+      const double n = Eigen::Vector4d(y[6], y[7], y[8], y[9]).norm();
+      result.monitors.max_quaternion_norm_error =
+          std::max(result.monitors.max_quaternion_norm_error, std::abs(n - 1.0));
+      model_.normalize(y);
+    }
+    switch (event) {
+      case kFallLow:
+        return fall(fell_low_reason(scene_, t));
+      case kFallTilt:
+        return fall(tilted_reason(scene_, t));
+      case kApex:
+        if (!stance_ && have_stride_ && !current_.has_apex) {
+          current_.has_apex = true;
+          current_.apex_height = y[2];
+        }
+        return run::Next::kContinue;
+      case kTouchdown:
+        return touchdown(t, y);
+      default:
+        return scheduled_time(t, y);
+    }
+  }
+
+  RunResult result;
+
+ private:
+  bool small_angle() const { return !model_.layout.quaternion; }
+  /// Counted once per integration segment (flight, stance) in which it happened.
+  void count_angle_warning() {
+    if (!angle_watch_.exceeded) return;
+    ++result.warnings["small_angle_range_exceeded"];
+    angle_watch_.exceeded = false;
+  }
+  run::Next fall(std::string reason) {
+    result.status = RunStatus::kFell;
+    result.reason = std::move(reason);
+    return run::Next::kStop;
+  }
+  run::Next touchdown(double t, ode::Vec& y);
+  run::Next scheduled_time(double t, ode::Vec& y);
+  void impulse(const control::StancePlan& plan, const BodyState& s, ode::Vec& y);
+
+  const scene::Scene& scene_;
+  const RunOptions& options_;
+  const bool pulse_;
+  const RigidBodyModel model_;
+  RigidBodyRhs rhs_;
+  control::PdBodyController body_controller_;
+  std::unique_ptr<control::LegController> leg_controller_;
+  HeightEvent touchdown_;
+  ApexEvent apex_;
+  HeightEvent fall_low_;
+  TiltEvent fall_tilt_;
+  const ode::EventFunction* flight_events_[4];
+  const ode::EventFunction* stance_events_[3];
+  Sampler sampler_;
+  SmallAngleWatch angle_watch_;
+  const double energy_scale_;
+  bool pending_touchdown_;
+
+  StrideRecord current_;  // the stride in progress
+  bool have_stride_ = false;
+  long touchdowns_ = 0;        // strides begun
+  long touchdown_events_ = 0;  // located touchdowns, including one that ends the run
+  bool stance_ = false;
+  double stance_end_ = 0.0;
+  control::StancePlan plan_;
+  size_t next_disturbance_ = 0;
+  double flight_energy_ = 0.0;
+};
+
+run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
+  // Flight energy is conserved (torque-free ballistic flight): monitor it.
+  result.monitors.max_flight_energy_drift =
+      std::max(result.monitors.max_flight_energy_drift,
+               std::abs(model_.energy(y) - flight_energy_) / energy_scale_);
+  result.monitors.max_event_residual =
+      std::max(result.monitors.max_event_residual, std::abs(y[2] - scene_.legs.length));
+  finish_stride(t);
+  ++touchdown_events_;
+  if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
+  const BodyState s = model_.decode(y);
+  const control::StanceContext ctx{scene_, body_controller_, *leg_controller_};
+  plan_ = control::plan_stance(ctx, touchdowns_, t, s);
+  current_ = open_stride(touchdowns_++, t, s, plan_, scene_, result.warnings);
+  have_stride_ = true;
+  current_.stance_duration = plan_.duration;
+  if (plan_.duration <= 0.0) {
+    impulse(plan_, s, y);
+    return run::Next::kContinue;
+  }
+  stance_ = true;
+  stance_end_ = t + plan_.duration;
+  rhs_.set_leg_load(plan_.net_force_body, plan_.net_moment_body);
+  y.segment<3>(model_.layout.quadrature_index()).setZero();
+  double peak = 0.0;
+  for (const auto& f : plan_.leg_force) peak = std::max(peak, f.norm());
+  current_.peak_leg_force = peak;
+  sampler_.stance = true;
+  sampler_.force_body = plan_.net_force_body;
+  return run::Next::kContinue;
+}
+
+/// Impulse model (or nothing to push): instantaneous momentum change.
+void ReducedRun::impulse(const control::StancePlan& plan, const BodyState& s, ode::Vec& y) {
+  Vector3d P_body = Vector3d::Zero(), H_body = Vector3d::Zero();
+  if (scene_.legs.body_only) {
+    P_body = plan.P_body;
+    H_body = plan.H_body;
+  } else {
+    for (size_t i = 0; i < plan.leg_impulse.size(); ++i) {
+      P_body += plan.leg_impulse[i];
+      H_body += scene_.legs.hips[i].cross(plan.leg_impulse[i]);
+    }
+  }
+  current_.P_delivered = s.rotation * P_body;
+  current_.H_delivered = H_body;
+  model_.apply_impulse(y, current_.P_delivered, H_body);
+  flight_energy_ = model_.energy(y);
+}
+
+/// Reached the segment's end: stance end, a disturbance, or the end of the run.
+run::Next ReducedRun::scheduled_time(double t, ode::Vec& y) {
+  if (stance_ && t >= stance_end_) {
+    stance_ = false;
+    rhs_.set_leg_load(Vector3d::Zero(), Vector3d::Zero());
+    if (have_stride_) {
+      current_.P_delivered = y.segment<3>(model_.layout.quadrature_index());
+      current_.H_delivered = plan_.net_moment_body * plan_.duration;
+    }
+    sampler_.stance = false;
+    flight_energy_ = model_.energy(y);
+  }
+  while (next_disturbance_ < scene_.disturbances.size() &&
+         scene_.disturbances[next_disturbance_].time <= t) {
+    const auto& d = scene_.disturbances[next_disturbance_++];
+    model_.apply_impulse(y, d.linear_impulse, d.angular_impulse);
+    if (!stance_) flight_energy_ = model_.energy(y);
+  }
+  return t >= scene_.simulation.duration ? run::Next::kStop : run::Next::kContinue;
 }
 
 }  // namespace
 
 RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
-  RunResult result;
-  const bool pulse = scene.model == scene::ModelKind::kPulse;
-  const RigidBodyModel model(scene, /*impulse_quadrature=*/pulse);
-  const Layout& L = model.layout;
-  RigidBodyRhs rhs(model);
-  const bool small_angle = !L.quaternion;
-  control::PdBodyController body_controller(scene.controller, scene.gravity, scene.legs.length,
-                                            !scene.legs.body_only, small_angle,
-                                            pulse ? scene.pulse.duration : 0.0);
-  const auto leg_controller = control::make_leg_controller(scene);
-  const control::StanceContext ctx{scene, body_controller, *leg_controller};
-
-  const auto& sim = scene.simulation;
-  auto stepper = ode::make_stepper(sim.solver, L.size());
-  Vec y(L.size());
-  model.initial_state(scene, y);
-
-  HeightEvent touchdown(scene.legs.length);
-  ApexEvent apex;
-  HeightEvent fall_low(sim.fall_min_height);
-  TiltEvent fall_tilt(L, sim.fall_max_tilt);
-  const ode::EventFunction* flight_events[] = {&touchdown, &apex, &fall_low, &fall_tilt};
-  const ode::EventFunction* stance_events[] = {&apex, &fall_low, &fall_tilt};
-  enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3 };
-
-  Sampler sampler(model, scene, &result.trajectory);
-  ode::StepObserver* sampler_or_null = options.record_trajectory ? &sampler : nullptr;
-  SmallAngleWatch angle_watch(L, sampler_or_null);
-  ode::StepObserver* observer = small_angle ? &angle_watch : sampler_or_null;
-  std::vector<StrideRecord>& strides = result.strides;
-  StrideRecord current;  // the stride in progress
-  bool have_stride = false;
-  long touchdowns = 0;        // strides begun
-  long touchdown_events = 0;  // located touchdowns, including one that ends the run
-
-  double t = 0.0;
-  bool stance = false;
-  double stance_end = 0.0;
-  control::StancePlan plan;
-  size_t next_disturbance = 0;
-  const double energy_scale =
-      scene.body.mass * scene.gravity * std::max(scene.controller.hop_height, 1e-3);
-  double flight_energy = model.energy(y);
-
-  // Closes the stride in progress; t_next < 0: the run ended before the next touchdown.
-  auto finish_stride = [&](double t_next) {
-    if (!have_stride) return;
-    if (t_next > current.t_touchdown) {
-      current.stride_time = t_next - current.t_touchdown;
-      current.duty_cycle = current.stance_duration / current.stride_time;
-    }
-    if (options.record_strides) strides.push_back(current);
-    have_stride = false;
-  };
-  auto end_run = [&](RunStatus status, std::string reason) {
-    result.status = status;
-    result.reason = std::move(reason);
-  };
-
-  stepper->reset(rhs, t, y);
-  if (options.record_trajectory) sampler.start(y);
-  if (small_angle && y.segment<3>(6).cwiseAbs().maxCoeff() > kSmallAngleLimit) {
-    angle_watch.exceeded = true;  // the initial attitude already leaves the range
-  }
-
-  bool pending_touchdown = options.start_at_touchdown;
-  bool running = true;
-  while (running) {
-    double t_target = sim.duration;
-    if (next_disturbance < scene.disturbances.size()) {
-      t_target = std::min(t_target, scene.disturbances[next_disturbance].time);
-    }
-    if (stance) t_target = std::min(t_target, stance_end);
-    std::span<const ode::EventFunction* const> events =
-        stance ? std::span<const ode::EventFunction* const>(stance_events)
-               : std::span<const ode::EventFunction* const>(flight_events);
-    ode::IntegrateResult r;
-    const bool forced_touchdown = pending_touchdown;
-    pending_touchdown = false;
-    if (forced_touchdown) {
-      r.reason = ode::StopReason::kReachedEnd;
-      r.t = t;
-    } else if (t_target > t) {
-      r = ode::integrate(rhs, *stepper, t_target, events, sim.solver, observer);
-    } else {
-      r.reason = ode::StopReason::kReachedEnd;
-      r.t = t;
-    }
-    t = r.t;
-    y = stepper->y();
-    if (angle_watch.exceeded) {
-      // Counted once per integration segment (flight, stance) in which it happened.
-      ++result.warnings["small_angle_range_exceeded"];
-      angle_watch.exceeded = false;
-    }
-    const int event = forced_touchdown ? kTouchdown
-                      : r.reason == ode::StopReason::kEvent
-                          ? (stance ? r.event_index + 1 : r.event_index)
-                          : -1;
-    switch (r.reason) {
-      case ode::StopReason::kStepSizeCollapse:
-        end_run(RunStatus::kDiverged, "step-size collapse at t = " + fmt(t) + " s");
-        running = false;
-        continue;
-      case ode::StopReason::kNonFinite:
-        end_run(RunStatus::kDiverged, "non-finite state at t = " + fmt(t) + " s");
-        running = false;
-        continue;
-      case ode::StopReason::kMaxSteps:
-        end_run(RunStatus::kDiverged,
-                sim.solver.step_limit_reason(
-                    stepper->counters().steps_accepted + stepper->counters().steps_rejected, t));
-        running = false;
-        continue;
-      case ode::StopReason::kCrawling:
-        end_run(RunStatus::kDiverged, sim.solver.crawl_reason(r.attempts, t - r.t_start, t));
-        running = false;
-        continue;
-      default:
-        break;
-    }
-    if (L.quaternion) {
-      const double n = Eigen::Vector4d(y[6], y[7], y[8], y[9]).norm();
-      result.monitors.max_quaternion_norm_error =
-          std::max(result.monitors.max_quaternion_norm_error, std::abs(n - 1.0));
-      model.normalize(y);
-    }
-    if (event == kFallLow) {
-      end_run(RunStatus::kFell,
-              "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
-      break;
-    }
-    if (event == kFallTilt) {
-      end_run(RunStatus::kFell, "body tilted past " + fmt(sim.fall_max_tilt * 180.0 / M_PI) +
-                                    " deg at t = " + fmt(t) + " s");
-      break;
-    }
-    if (event == kApex) {
-      if (!stance && have_stride && !current.has_apex) {
-        current.has_apex = true;
-        current.apex_height = y[2];
-      }
-    } else if (event == kTouchdown) {
-      // Flight energy is conserved (torque-free ballistic flight): monitor it.
-      result.monitors.max_flight_energy_drift =
-          std::max(result.monitors.max_flight_energy_drift,
-                   std::abs(model.energy(y) - flight_energy) / energy_scale);
-      result.monitors.max_event_residual =
-          std::max(result.monitors.max_event_residual, std::abs(y[2] - scene.legs.length));
-      finish_stride(t);
-      ++touchdown_events;
-      if (touchdowns >= sim.max_strides) {
-        running = false;
-        break;
-      }
-      const BodyState s = model.decode(y);
-      plan = control::plan_stance(ctx, touchdowns, t, s);
-      current = StrideRecord{};
-      have_stride = true;
-      current.index = touchdowns++;
-      current.t_touchdown = t;
-      current.position = s.position;
-      current.velocity = s.velocity;
-      current.euler123 = s.euler123;
-      current.omega = s.omega;
-      current.setpoint =
-          scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
-      current.P_requested = plan.command.P_world;
-      current.H_requested = plan.command.H_body;
-      current.gravity_compensation = plan.gravity_compensation;
-      current.stance_duration = plan.duration;
-      current.active_legs = plan.active_legs;
-      current.allocation = plan.allocation_status;
-      if (plan.allocation_status != control::AllocationStatus::kOk) {
-        ++result.warnings[plan.allocation_status == control::AllocationStatus::kLimited
-                              ? "allocation_limited"
-                              : "allocation_infeasible"];
-      }
-      if (plan.duration <= 0.0) {
-        // Impulse model (or nothing to push): instantaneous momentum change.
-        Vector3d P_body = Vector3d::Zero(), H_body = Vector3d::Zero();
-        if (scene.legs.body_only) {
-          P_body = plan.P_body;
-          H_body = plan.H_body;
-        } else {
-          for (size_t i = 0; i < plan.leg_impulse.size(); ++i) {
-            P_body += plan.leg_impulse[i];
-            H_body += scene.legs.hips[i].cross(plan.leg_impulse[i]);
-          }
-        }
-        current.P_delivered = s.rotation * P_body;
-        current.H_delivered = H_body;
-        model.apply_impulse(y, current.P_delivered, H_body);
-        flight_energy = model.energy(y);
-      } else {
-        stance = true;
-        stance_end = t + plan.duration;
-        rhs.set_leg_load(plan.net_force_body, plan.net_moment_body);
-        y.segment<3>(L.quadrature_index()).setZero();
-        double peak = 0.0;
-        for (const auto& f : plan.leg_force) peak = std::max(peak, f.norm());
-        current.peak_leg_force = peak;
-        sampler.stance = true;
-        sampler.force_body = plan.net_force_body;
-      }
-    } else {
-      // Reached t_target: stance end, a disturbance, or the end of the run.
-      if (stance && t >= stance_end) {
-        stance = false;
-        rhs.set_leg_load(Vector3d::Zero(), Vector3d::Zero());
-        if (have_stride) {
-          current.P_delivered = y.segment<3>(L.quadrature_index());
-          current.H_delivered = plan.net_moment_body * plan.duration;
-        }
-        sampler.stance = false;
-        flight_energy = model.energy(y);
-      }
-      while (next_disturbance < scene.disturbances.size() &&
-             scene.disturbances[next_disturbance].time <= t) {
-        const auto& d = scene.disturbances[next_disturbance++];
-        model.apply_impulse(y, d.linear_impulse, d.angular_impulse);
-        if (!stance) flight_energy = model.energy(y);
-      }
-      if (t >= sim.duration) running = false;
-    }
-    if (running) stepper->reset(rhs, t, y);
-  }
-  finish_stride(-1.0);  // last stride: no next touchdown, stride time 0
-
-  result.t_end = t;
-  const BodyState s = model.decode(y);
-  result.final_position = s.position;
-  result.final_velocity = s.velocity;
-  result.final_euler123 = s.euler123;
-  result.final_omega = s.omega;
-  result.final_attitude = s.attitude;
-  if (result.status == RunStatus::kCompleted) {
-    result.reason = touchdowns > sim.max_strides - 1 && t < sim.duration
-                        ? "reached " + std::to_string(sim.max_strides) + " strides"
-                        : "reached t = " + fmt(t) + " s";
-  }
+  ReducedRun hybrid(scene, options);
+  const RigidBodyModel& model = hybrid.model();
+  auto stepper = ode::make_stepper(scene.simulation.solver, model.layout.size());
+  ode::Vec y0(model.layout.size());
+  model.initial_state(scene, y0);
+  const run::HybridEnd end = run::run_hybrid(hybrid, *stepper, 0.0, y0);
+  hybrid.finish_stride(-1.0);  // last stride: no next touchdown, stride time 0
+  RunResult& result = hybrid.result;
+  finish_run(result, end.t, model.decode(end.y), hybrid.touchdowns(), scene);
   result.cost.solver = stepper->counters();
-  result.cost.touchdowns = touchdown_events;
+  result.cost.touchdowns = hybrid.touchdown_events();
   result.cost.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return result;
+  return std::move(result);
 }
 
 }  // namespace pronk::reduced

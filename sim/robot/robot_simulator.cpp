@@ -5,13 +5,16 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <sstream>
+#include <span>
+#include <utility>
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/pseudorigid/stability.hpp"
+#include "sim/reduced/run_record.hpp"
 #include "sim/robot/robot_system.hpp"
+#include "sim/run/hybrid_run.hpp"
 
 namespace pronk::robot {
 
@@ -20,13 +23,6 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
 namespace {
-
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
 
 struct Com {
   Vector3d x, v;  ///< [m], [m/s]
@@ -257,8 +253,6 @@ struct Run {
       }
     }
   }
-
-  std::vector<Vector3d> push;  ///< body-frame push direction of each actuator
 };
 
 // Energy put in (or taken out) by placing the legs [J].
@@ -396,9 +390,9 @@ ode::SolverOptions solver_options(const scene::PseudoRigid& prs, double energy_s
 /// " (METHOD step H s[; verlet's stability bound])": the numbers of a divergence.
 /// verlet_limit: 2 / (a bound on the highest spring frequency) [s], 0 for other methods.
 std::string divergence_note(ode::Method method, double h, double verlet_limit) {
-  std::string note = " (" + std::string(ode::to_string(method)) + " step " + fmt(h) + " s";
+  std::string note = " (" + std::string(ode::to_string(method)) + " step " + run::fmt(h) + " s";
   if (verlet_limit > 0.0) {
-    note += "; verlet is stable below h = 2/omega_max >= " + fmt(verlet_limit) +
+    note += "; verlet is stable below h = 2/omega_max >= " + run::fmt(verlet_limit) +
             " s, omega_max the springs' highest frequency (bound)";
   }
   return note + ")";
@@ -443,40 +437,84 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
   return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
 }
 
-}  // namespace
-
-RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& options) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  RobotRunResult result;
-  reduced::RunResult& res = result.run;
-  const RobotModel model = build_robot(scene);
-  pr::Mechanism mech = model.mechanism;  // this run's copy: hip placement turns the slides
-  const scene::PseudoRigid& prs = scene.pseudo_rigid;
-  RobotSystem sys(model, mech, prs);
-  const pr::MechanismSystem& msys = sys.mechanism();
-  const int n = sys.dimension();
-  const size_t legs = model.hip.size();
-  const double g = scene.gravity;
-  const double l = scene.legs.length;
-  const auto& sim = scene.simulation;
-
-  // The same three control layers as the reduced models, planned as constant-force
-  // pulses (the pulse settings); the spring legs' layer removes the rebound.
-  scene::Scene plan_scene = scene;
-  plan_scene.model = scene::ModelKind::kPulse;
-  if (model.spring_legs) plan_scene.pulse.gravity_compensation = false;
-  Vector3d common_push = Vector3d::UnitZ();  // legs' push direction, body frame
-  Vector3d mean_hip = Vector3d::Zero();      // body frame [m]
-  for (const Vector3d& h : model.hip) mean_hip += h / static_cast<double>(model.hip.size());
-  // Expected stance duration of spring legs [s]: half a period of the body on its leg
-  // springs until a stance is measured (free stance hips measure every stance).
-  double spring_stance =
-      model.spring_legs
-          ? M_PI * std::sqrt(scene.body.mass /
-                             (prs.leg_stiffness * static_cast<double>(model.hip.size())))
-          : 0.0;
+/// What a robot run changes as it goes, beside the const RobotModel (MuJoCo's mjData beside
+/// its mjModel): the run's copy of the mechanism, whose leg rest lengths and slide surfaces
+/// the hip placement and the foot switches set (RobotSystem reads them there), the leg
+/// actuators' commands, and the controller's adapted terms.
+struct RunData {
+  RunData(const RobotModel& model, const scene::Scene& scene)
+      : mech(model.mechanism),
+        push(model.hip.size(), Vector3d::UnitZ()),
+        leg_force(model.hip.size(), 0.0),
+        off_time(model.hip.size(), 0.0),
+        stride_force(model.hip.size(), 0.0),
+        armed_force(model.hip.size(), 0.0),
+        armed_duration(model.hip.size(), 0.0) {
+    for (size_t i = 0; i < model.hip.size(); ++i) push[i] = -model.direction[i];
+    // Expected stance duration of spring legs [s]: half a period of the body on its leg
+    // springs until a stance is measured (free stance hips measure every stance).
+    spring_stance =
+        model.spring_legs
+            ? M_PI * std::sqrt(scene.body.mass / (scene.pseudo_rigid.leg_stiffness *
+                                                  static_cast<double>(model.hip.size())))
+            : 0.0;
+  }
+  pr::Mechanism mech;                ///< this run's copy: hip placement turns the slides
+  std::vector<Vector3d> push;        ///< body-frame push direction of each actuator
+  std::vector<double> leg_force;     ///< actuator force of each leg now [N]
+  std::vector<double> off_time;      ///< when each actuator switches off [s]
+  std::vector<double> stride_force;  ///< the stance's actuator forces, for the stride record [N]
+  /// Spring legs: the actuators fire in the thrust phase, from the bottom of the stance (CoM
+  /// velocity rising through zero) on, so a downward force lowers the takeoff speed and an
+  /// upward one raises it (seed fig. 2.13).
+  bool armed = false;
+  std::vector<double> armed_force, armed_duration;
+  Vector3d common_push = Vector3d::UnitZ();  ///< legs' push direction, body frame
+  double spring_stance = 0.0;                ///< expected stance duration of spring legs [s]
   double hop_trim = 0.0;  ///< hop-height feedback: extra takeoff speed asked [m/s]
-  // One controller per hop-height setpoint (controller.hop_height_changes).
+};
+
+/// The same three control layers as the reduced models, planned as constant-force pulses
+/// (the pulse settings), one set per hop-height setpoint (controller.hop_height_changes);
+/// the spring legs' layer removes the rebound.
+class ControlLayers {
+ public:
+  ControlLayers(const scene::Scene& scene, const RobotModel& model, const RunData& data)
+      : spring_legs_(model.spring_legs) {
+    scene::Scene plan_scene = scene;
+    plan_scene.model = scene::ModelKind::kPulse;
+    if (model.spring_legs) plan_scene.pulse.gravity_compensation = false;
+    Vector3d mean_hip = Vector3d::Zero();  // body frame [m]
+    for (const Vector3d& h : model.hip) mean_hip += h / static_cast<double>(model.hip.size());
+    auto add_layer = [&](double from, double hop_height) {
+      Layer L;
+      L.scene = std::make_unique<scene::Scene>(plan_scene);
+      L.scene->controller.hop_height = hop_height;
+      L.pd = std::make_unique<control::PdBodyController>(
+          L.scene->controller, scene.gravity, scene.legs.length, !scene.legs.body_only, false,
+          L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
+      L.rebound = std::make_unique<SpringReboundController>(
+          *L.pd, scene.body.mass, &data.common_push, mean_hip, scene.gravity, &data.spring_stance,
+          &data.hop_trim);
+      L.legs = control::make_leg_controller(*L.scene);
+      L.from = from;
+      layers_.push_back(std::move(L));
+    };
+    add_layer(0.0, scene.controller.hop_height);
+    for (const auto& [time, h] : scene.controller.hop_height_changes) add_layer(time, h);
+  }
+  /// The hop height asked at time t [m].
+  double hop_height(double time) const { return at(time).scene->controller.hop_height; }
+  /// The stance context at time t: with the spring legs' rebound layer, or the total
+  /// request (leg placement).
+  control::StanceContext context(double time, bool total) const {
+    const Layer& L = at(time);
+    const control::BodyController& b =
+        spring_legs_ && !total ? static_cast<const control::BodyController&>(*L.rebound) : *L.pd;
+    return control::StanceContext{*L.scene, b, *L.legs};
+  }
+
+ private:
   struct Layer {
     std::unique_ptr<scene::Scene> scene;
     std::unique_ptr<control::PdBodyController> pd;
@@ -484,555 +522,600 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     std::unique_ptr<control::LegController> legs;
     double from = 0.0;  ///< in use from this time on [s]
   };
-  std::vector<Layer> layers;
-  auto add_layer = [&](double from, double hop_height) {
-    Layer L;
-    L.scene = std::make_unique<scene::Scene>(plan_scene);
-    L.scene->controller.hop_height = hop_height;
-    L.pd = std::make_unique<control::PdBodyController>(
-        L.scene->controller, g, l, !scene.legs.body_only, false,
-        L.scene->pulse.mode == scene::PulseMode::kDuration ? L.scene->pulse.duration : 0.0);
-    L.rebound = std::make_unique<SpringReboundController>(*L.pd, scene.body.mass, &common_push,
-                                                          mean_hip, g, &spring_stance, &hop_trim);
-    L.legs = control::make_leg_controller(*L.scene);
-    L.from = from;
-    layers.push_back(std::move(L));
-  };
-  add_layer(0.0, scene.controller.hop_height);
-  for (const auto& [time, h] : scene.controller.hop_height_changes) add_layer(time, h);
-  auto layer_at = [&](double time) -> const Layer& {
+  const Layer& at(double time) const {
     size_t k = 0;
-    while (k + 1 < layers.size() && layers[k + 1].from <= time) ++k;
-    return layers[k];
-  };
-  // The stance context at time t: with the spring legs' rebound layer, or the total
-  // request (leg placement).
-  auto context = [&](double time, bool total) {
-    const Layer& L = layer_at(time);
-    const control::BodyController& b = model.spring_legs && !total
-                                           ? static_cast<const control::BodyController&>(*L.rebound)
-                                           : *L.pd;
-    return control::StanceContext{*L.scene, b, *L.legs};
-  };
+    while (k + 1 < layers_.size() && layers_[k + 1].from <= time) ++k;
+    return layers_[k];
+  }
+  bool spring_legs_;
+  std::vector<Layer> layers_;
+};
 
-  ode::Vec y = mech.initial_state();
-
-  Run run{scene, model, sys, msys, result};
-  run.record = options.record_trajectory;
-  run.in_contact.assign(legs, false);
-  run.contact_start.assign(legs, Eigen::Vector2d::Zero());
-  run.push.assign(legs, Vector3d::UnitZ());
-  for (size_t i = 0; i < legs; ++i) run.push[i] = -model.direction[i];
-  Observer observer(run, sim.sample_interval, n,
-                    prs.solver.method == ode::Method::kVerlet && sys.has_dissipation_split());
-
-  ComHeightEvent touchdown(model, l);
-  ApexEvent apex(model);
-  ComHeightEvent fall_low(model, sim.fall_min_height);
-  TiltEvent fall_tilt(model, msys, sim.fall_max_tilt);
-  BottomEvent bottom(model);
-  std::vector<const ode::EventFunction*> flight_events = {&touchdown, &apex, &fall_low, &fall_tilt};
-  std::vector<const ode::EventFunction*> stance_events = {&apex, &fall_low, &fall_tilt};
-  std::vector<const ode::EventFunction*> armed_events = {&bottom, &fall_low, &fall_tilt};
+/// One robot run on the hybrid loop: flight, stance and (spring legs) armed segments;
+/// touchdown (the controller plans the stance and commands the actuators), the bottom of a
+/// spring stance (the actuators fire), apex (hip placement, hop-height feedback), feet
+/// landing and lifting off (free stance hips), actuators switching off, disturbances,
+/// falls and energy blow-up.
+class RobotRun final : public run::HybridModel {
+ public:
   enum { kTouchdown = 0, kApex = 1, kFallLow = 2, kFallTilt = 3, kBottom = 4, kFoot = 5 };
-  std::vector<int> flight_ids = {kTouchdown, kApex, kFallLow, kFallTilt};
-  std::vector<int> stance_ids = {kApex, kFallLow, kFallTilt};
-  std::vector<int> armed_ids = {kBottom, kFallLow, kFallTilt};
-  // Rotating hips are driven in flight (they place the legs) and free about their
-  // pitch axis in stance: a landed foot's slide (a line) becomes a slot (a bilateral
-  // plane through the hip containing the leg and the body x axis), so the leg swings
-  // fore-aft over its gripped foot as a strut (spring, damper and actuator along the
-  // hip-foot line) while ab/adduction stays held; at lift-off the slide takes the
-  // leg again along its current direction. (Fully free hips, no slot, were tried:
-  // the four pinned struts make yaw unstable, ~3x per stride.)
-  const bool free_stance = model.spring_legs && prs.hip_rotation;
-  std::vector<std::unique_ptr<FootEvent>> foot_events;
-  if (free_stance) {
-    for (size_t i = 0; i < legs; ++i) {
-      foot_events.push_back(std::make_unique<FootEvent>(sys, i, model.foot[i]));
-      for (auto* list : {&flight_events, &stance_events, &armed_events}) {
-        list->push_back(foot_events.back().get());
+
+  RobotRun(const scene::Scene& scene, const RobotModel& model, const RobotRunOptions& options);
+
+  /// The stepper's options (verlet's energy budget in joules).
+  const ode::SolverOptions& solver() const { return solver_; }
+  int dimension() const { return sys_.dimension(); }
+  ode::Vec initial_state() const { return data_.mech.initial_state(); }
+  /// Before the run: a run starting in the air places its legs for the first touchdown.
+  void prepare(ode::Vec& y) {
+    if (model_.spring_legs && prs_.hip_rotation) place_legs(0.0, y);
+  }
+  /// The run's records at its end (t, y).
+  void finish(double t, const ode::Vec& y, const ode::Stepper& stepper);
+
+  const ode::OdeSystem& system() const override { return sys_; }
+  const ode::SolverOptions& integration_options() const override { return prs_.solver; }
+  void start(const ode::Stepper& stepper, const ode::Vec& y) override {
+    observer_.start(stepper, y);
+  }
+  double segment_end(double) const override {
+    double t_target = scene_.simulation.duration;
+    if (next_disturbance_ < scene_.disturbances.size()) {
+      t_target = std::min(t_target, scene_.disturbances[next_disturbance_].time);
+    }
+    if (run_.stance) {
+      for (size_t i = 0; i < legs_; ++i) {
+        if (data_.leg_force[i] != 0.0) t_target = std::min(t_target, data_.off_time[i]);
       }
-      for (auto* list : {&flight_ids, &stance_ids, &armed_ids}) {
+    }
+    return t_target;
+  }
+  std::span<const ode::EventFunction* const> events() const override {
+    return data_.armed ? armed_events_ : run_.stance ? stance_events_ : flight_events_;
+  }
+  ode::StepObserver* observer() override { return &observer_; }
+  void on_failure(const run::Segment& seg, const ode::Vec&, const ode::Stepper& st) override {
+    end_run(reduced::RunStatus::kDiverged,
+            run::failure_reason(seg, st, prs_.solver, step_note(st)));
+  }
+  run::Next on_segment_end(const run::Segment& seg, ode::Vec& y,
+                           const ode::Stepper& stepper) override;
+  void on_restart() override { observer_.restart(); }
+
+  RobotRunResult result;
+
+ private:
+  const std::vector<int>& event_ids() const {
+    return data_.armed ? armed_ids_ : run_.stance ? stance_ids_ : flight_ids_;
+  }
+  void end_run(reduced::RunStatus status, std::string reason) {
+    result.run.status = status;
+    result.run.reason = std::move(reason);
+  }
+  std::string step_note(const ode::Stepper& st) const {
+    return divergence_note(solver_.method, st.h(), verlet_limit_);
+  }
+  Vector3d total_momentum(const ode::Vec& ys) const {
+    Vector3d p = Vector3d::Zero();
+    for (size_t j = 0; j < data_.mech.masses.size(); ++j) p += ys.segment<3>(6 * j + 3);
+    return p;
+  }
+  /// Everything the legs and the ground gave since touchdown (gravity removed) [N s].
+  Vector3d delivered(double t, const ode::Vec& y) const {
+    return total_momentum(y) - p_touchdown_ +
+           Vector3d(0, 0, total_mass_ * g_ * (t - current_.t_touchdown));
+  }
+  void finish_stride(double t_next) {
+    if (!have_stride_) return;
+    reduced::close_stride(current_, t_next);
+    result.run.strides.push_back(current_);
+    result.stride_actuator_force.push_back(data_.stride_force);
+    result.stride_slip.push_back(run_.stride_slip);
+    have_stride_ = false;
+  }
+  void set_actuators() { sys_.set_actuators(data_.leg_force, data_.push); }
+  void book_work(double e_before, const ode::Vec& y) {
+    book_hip_work(result.monitors, msys_.energies(y).total() - e_before);
+  }
+  bool energy_ok(double t, const ode::Vec& y, const ode::Stepper& stepper);
+  void on_apex(double t, ode::Vec& y);
+  run::Next on_touchdown(double t, const ode::Vec& y);
+  double command_actuators(const control::StancePlan& plan, double t);
+  void on_bottom(double t);
+  void on_foot(size_t first, double t, ode::Vec& y);
+  void lift_foot(size_t i, ode::Vec& y);
+  run::Next on_time(double t, ode::Vec& y);
+  void apply_disturbance(const scene::Disturbance& d, ode::Vec& y);
+  void place_legs(double t, ode::Vec& y);
+  std::vector<Vector3d> placement(double t, const ode::Vec& y, control::BodyState& s,
+                                  Matrix3d& R_td) const;
+  std::vector<double> level_rest_lengths(const control::BodyState& s, const Matrix3d& R_td,
+                                         const std::vector<Vector3d>& u) const;
+
+  const scene::Scene& scene_;
+  const RobotModel& model_;
+  const scene::PseudoRigid& prs_;
+  const size_t legs_;
+  const double g_, l_;
+  RunData data_;
+  RobotSystem sys_;
+  const pr::MechanismSystem& msys_;
+  const ControlLayers control_;
+  Run run_;
+  Observer observer_;
+  ComHeightEvent touchdown_, fall_low_;
+  ApexEvent apex_;
+  TiltEvent fall_tilt_;
+  BottomEvent bottom_;
+  std::vector<std::unique_ptr<FootEvent>> foot_events_;
+  std::vector<const ode::EventFunction*> flight_events_, stance_events_, armed_events_;
+  std::vector<int> flight_ids_, stance_ids_, armed_ids_;
+  /// Rotating hips are driven in flight (they place the legs) and free about their
+  /// pitch axis in stance: a landed foot's slide (a line) becomes a slot (a bilateral
+  /// plane through the hip containing the leg and the body x axis), so the leg swings
+  /// fore-aft over its gripped foot as a strut (spring, damper and actuator along the
+  /// hip-foot line) while ab/adduction stays held; at lift-off the slide takes the
+  /// leg again along its current direction. (Fully free hips, no slot, were tried:
+  /// the four pinned struts make yaw unstable, ~3x per stride.)
+  const bool free_stance_;
+  double total_mass_ = 0.0, balance0_ = 0.0, blowup_ = 0.0;
+  ode::SolverOptions solver_;
+  double verlet_limit_ = 0.0;
+
+  reduced::StrideRecord current_;
+  bool have_stride_ = false;
+  long touchdowns_ = 0, touchdown_events_ = 0;
+  Vector3d p_touchdown_ = Vector3d::Zero();
+  size_t next_disturbance_ = 0;
+};
+
+RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
+                   const RobotRunOptions& options)
+    : scene_(scene),
+      model_(model),
+      prs_(scene.pseudo_rigid),
+      legs_(model.hip.size()),
+      g_(scene.gravity),
+      l_(scene.legs.length),
+      data_(model, scene),
+      sys_(model, data_.mech, prs_),
+      msys_(sys_.mechanism()),
+      control_(scene, model, data_),
+      run_(scene, model, sys_, msys_, result),
+      observer_(run_, scene.simulation.sample_interval, sys_.dimension(),
+                prs_.solver.method == ode::Method::kVerlet && sys_.has_dissipation_split()),
+      touchdown_(model, l_),
+      fall_low_(model, scene.simulation.fall_min_height),
+      apex_(model),
+      fall_tilt_(model, msys_, scene.simulation.fall_max_tilt),
+      bottom_(model),
+      flight_events_{&touchdown_, &apex_, &fall_low_, &fall_tilt_},
+      stance_events_{&apex_, &fall_low_, &fall_tilt_},
+      armed_events_{&bottom_, &fall_low_, &fall_tilt_},
+      flight_ids_{kTouchdown, kApex, kFallLow, kFallTilt},
+      stance_ids_{kApex, kFallLow, kFallTilt},
+      armed_ids_{kBottom, kFallLow, kFallTilt},
+      free_stance_(model.spring_legs && prs_.hip_rotation) {
+  run_.record = options.record_trajectory;
+  run_.in_contact.assign(legs_, false);
+  run_.contact_start.assign(legs_, Eigen::Vector2d::Zero());
+  if (free_stance_) {
+    for (size_t i = 0; i < legs_; ++i) {
+      foot_events_.push_back(std::make_unique<FootEvent>(sys_, i, model.foot[i]));
+      for (auto* list : {&flight_events_, &stance_events_, &armed_events_}) {
+        list->push_back(foot_events_.back().get());
+      }
+      for (auto* list : {&flight_ids_, &stance_ids_, &armed_ids_}) {
         list->push_back(kFoot + static_cast<int>(i));
       }
     }
   }
-  // Spring legs: the actuators fire in the thrust phase, from the bottom of the
-  // stance (CoM velocity rising through zero) on, so a downward force lowers the
-  // takeoff speed and an upward one raises it (seed fig. 2.13).
-  bool armed = false;
-  std::vector<double> armed_force(legs, 0.0), armed_duration(legs, 0.0);
-
-  result.monitors.internal_stiffness =
-      mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
-  if (sys.rotation_state() >= 0) {  // rigid body: no internal springs; the leg slides' stiffness
-    result.monitors.internal_stiffness =
+  const pr::Mechanism& mech = data_.mech;
+  RobotMonitors& mon = result.monitors;
+  mon.internal_stiffness = mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
+  if (sys_.rotation_state() >= 0) {  // rigid body: no internal springs; the leg slides' stiffness
+    mon.internal_stiffness =
         model.slide.empty() || model.slide[0] < 0 ? 0.0 : mech.surfaces[model.slide[0]].stiffness;
   }
-  result.monitors.contact_stiffness =
-      model.ground >= 0 ? mech.surfaces[model.ground].stiffness : 0.0;
-  result.monitors.stiffness = model.stiffness;
-  const double total_mass = mech.total_mass();
-  result.monitors.energy_scale =
-      total_mass * g * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
-  const double balance0 = msys.energies(y).total();
-  const double blowup = 10.0 * result.monitors.energy_scale;
-  run.balance0 = balance0;
-  run.blowup = blowup;
-  const ode::SolverOptions solver = solver_options(prs, result.monitors.energy_scale);
-  auto stepper = ode::make_stepper(solver, n);
-  const double verlet_limit =
-      solver.method == ode::Method::kVerlet ? 2.0 / pr::max_frequency_bound(mech) : 0.0;
-  auto step_note = [&]() { return divergence_note(solver.method, stepper->h(), verlet_limit); };
+  mon.contact_stiffness = model.ground >= 0 ? mech.surfaces[model.ground].stiffness : 0.0;
+  mon.stiffness = model.stiffness;
+  total_mass_ = mech.total_mass();
+  mon.energy_scale =
+      total_mass_ * g_ * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
+  balance0_ = msys_.energies(mech.initial_state()).total();
+  blowup_ = 10.0 * mon.energy_scale;
+  run_.balance0 = balance0_;
+  run_.blowup = blowup_;
+  solver_ = solver_options(prs_, mon.energy_scale);
+  verlet_limit_ =
+      solver_.method == ode::Method::kVerlet ? 2.0 / pr::max_frequency_bound(mech) : 0.0;
+}
 
-  auto end_run = [&](reduced::RunStatus status, std::string reason) {
-    res.status = status;
-    res.reason = std::move(reason);
-  };
-  auto total_momentum = [&](const ode::Vec& ys) {
-    Vector3d p = Vector3d::Zero();
-    for (size_t j = 0; j < mech.masses.size(); ++j) p += ys.segment<3>(6 * j + 3);
-    return p;
-  };
-
-  reduced::StrideRecord current;
-  bool have_stride = false;
-  long touchdowns = 0, touchdown_events = 0;
-  Vector3d p_touchdown = Vector3d::Zero();
-  std::vector<double> leg_force(legs, 0.0), off_time(legs, 0.0);
-  std::vector<double> stride_force(legs, 0.0);
-  auto finish_stride = [&](double t_next) {
-    if (!have_stride) return;
-    if (t_next > current.t_touchdown) {
-      current.stride_time = t_next - current.t_touchdown;
-      current.duty_cycle = current.stance_duration / current.stride_time;
+run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
+                                   const ode::Stepper& stepper) {
+  const double t = seg.t;
+  {
+    // The crawl guard over the whole run: events that fire again and again (a foot
+    // chattering at a contact switch) restart integrate() before its own guard trips.
+    const ode::SolverCounters& c = stepper.counters();
+    const long attempts = c.steps_accepted + c.steps_rejected;
+    if (prs_.solver.crawling(attempts, t)) {
+      end_run(reduced::RunStatus::kDiverged, prs_.solver.crawl_reason(attempts, t, t));
+      return run::Next::kStop;
     }
-    res.strides.push_back(current);
-    result.stride_actuator_force.push_back(stride_force);
-    result.stride_slip.push_back(run.stride_slip);
-    have_stride = false;
-  };
+  }
+  if (!energy_ok(t, y, stepper)) return run::Next::kStop;
+  const int event = seg.event() >= 0 ? event_ids()[static_cast<size_t>(seg.event())] : -1;
+  switch (event) {
+    case kFallLow:
+      end_run(reduced::RunStatus::kFell, reduced::fell_low_reason(scene_, t));
+      return run::Next::kStop;
+    case kFallTilt:
+      end_run(reduced::RunStatus::kFell, reduced::tilted_reason(scene_, t));
+      return run::Next::kStop;
+    case kApex:
+      on_apex(t, y);
+      return run::Next::kContinue;
+    case kTouchdown:
+      return on_touchdown(t, y);
+    case kBottom:
+      on_bottom(t);
+      return run::Next::kContinue;
+    case -1:
+      return on_time(t, y);
+    default:
+      on_foot(static_cast<size_t>(event - kFoot), t, y);
+      return run::Next::kContinue;
+  }
+}
 
-  // Hip placement (hip_rotation): plan the stance at the predicted (ballistic)
-  // touchdown and turn each leg in the air to its placement; the foot moves with the
-  // leg (its energy change is hip work).
-  auto place_legs = [&](double t, ode::Vec& y) {
-    // Hip placement: plan the stance at the predicted (ballistic) touchdown and turn
-    // each leg along its total impulse; the foot moves with the leg (its energy
-    // change is hip work).
-    control::BodyState s = run.body_state(y);
-    const double dz = s.position.z() - l;
-    if (dz > 0.0) {
-      const double tf = std::sqrt(2.0 * dz / g);
-      // Body attitude at the predicted touchdown, after tf of free flight (constant
-      // angular velocity).
-      const Vector3d w_world = msys.body_omega(model.body, y);
-      Matrix3d R_td = msys.frames(y)[model.body].rotation;
-      if (w_world.norm() * tf > 1e-12) {
-        R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
+/// The energy balance at a segment's end (or at a sample on the way that blew up first):
+/// false ends the run as diverged.
+bool RobotRun::energy_ok(double t, const ode::Vec& y, const ode::Stepper& stepper) {
+  const double balance =
+      msys_.energies(y).total() + run_.dissipated - run_.work - result.monitors.hip_work;
+  double drift = std::abs(balance - balance0_);
+  double t_blowup = t;
+  if (run_.blowup_time >= 0.0) {  // a sample on the way blew up first
+    drift = run_.blowup_drift;
+    t_blowup = run_.blowup_time;
+  }
+  if (!y.allFinite() || !std::isfinite(balance) || !(drift <= blowup_)) {
+    end_run(reduced::RunStatus::kDiverged,
+            "energy blow-up at t = " + run::fmt(t_blowup) + " s: the balance drifted by " +
+                run::fmt(drift) + " J (scale " + run::fmt(result.monitors.energy_scale) +
+                " J); stiffness too high for the solver or the step too large" +
+                step_note(stepper));
+    return false;
+  }
+  result.monitors.energy_drift =
+      std::max({result.monitors.energy_drift, drift, run_.sampled_drift});
+  return true;
+}
+
+void RobotRun::on_apex(double t, ode::Vec& y) {
+  if (!run_.stance && have_stride_ && !current_.has_apex) {
+    current_.has_apex = true;
+    current_.apex_height = body_com(model_, y).x.z();
+    if (prs_.hop_trim_gain > 0.0) {
+      // Hop-height feedback: the takeoff speed this apex lacked, asked for next time.
+      const double v_want = std::sqrt(2.0 * g_ * control_.hop_height(t));
+      const double v_got = std::sqrt(2.0 * g_ * std::max(0.0, current_.apex_height - l_));
+      data_.hop_trim = std::clamp(data_.hop_trim + prs_.hop_trim_gain * (v_want - v_got), -v_want,
+                                  prs_.hop_trim_max * v_want);
+    }
+    current_.P_delivered = delivered(t, y);
+  }
+  if (!run_.stance && model_.spring_legs) {
+    // Foot vibration on the leg springs (free fall: the springs would be at rest).
+    const Com c = body_com(model_, y);
+    double e = msys_.energies(y).leg;
+    for (int f : model_.foot) {
+      const double m = data_.mech.masses[f].mass;
+      const Vector3d v = y.segment<3>(6 * f + 3) / m - c.v;
+      e += 0.5 * m * v.squaredNorm();
+    }
+    result.monitors.max_leg_vibration_energy =
+        std::max(result.monitors.max_leg_vibration_energy, e);
+  }
+  if (!run_.stance && model_.spring_legs && prs_.hip_rotation) place_legs(t, y);
+}
+
+run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
+  finish_stride(t);
+  ++touchdown_events_;
+  if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
+  const control::BodyState s = run_.body_state(y);
+  const control::StancePlan plan =
+      control::plan_stance(control_.context(t, false), touchdowns_, t, s);
+  current_ = reduced::open_stride(touchdowns_++, t, s, plan, scene_, result.run.warnings);
+  have_stride_ = true;
+  run_.stride_slip = 0.0;
+  p_touchdown_ = total_momentum(y);
+  const double stance_end = command_actuators(plan, t);
+  data_.stride_force = data_.leg_force;
+  current_.stance_duration = stance_end - t;
+  run_.stance = stance_end > t;
+  if (run_.stance && model_.spring_legs) {
+    data_.armed = true;  // fire at the bottom of the stance
+    std::fill(data_.leg_force.begin(), data_.leg_force.end(), 0.0);
+  }
+  set_actuators();
+  return run::Next::kContinue;
+}
+
+/// Leg controllers: a constant force along each leg for the stance duration T; with a
+/// force limit the pulse saturates, and with impulse feedback the actuator stays on until
+/// its delivered impulse reaches the allocation (seed 5.4). Sets the legs' forces and
+/// switch-off times and the stride's peak force and angular impulse; returns the stance's
+/// end [s].
+double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
+  const double T = prs_.actuators ? plan.duration : 0.0;
+  double stance_end = t;
+  Vector3d H = Vector3d::Zero();
+  double peak = 0.0;
+  std::fill(data_.leg_force.begin(), data_.leg_force.end(), 0.0);
+  std::fill(data_.armed_force.begin(), data_.armed_force.end(), 0.0);
+  for (size_t i = 0; i < legs_ && T > 0.0 && i < plan.leg_impulse.size(); ++i) {
+    const Vector3d p = plan.leg_impulse[i];
+    double impulse = 0.0;  // signed along the push direction [N s]
+    if (model_.spring_legs) {
+      impulse = p.dot(data_.push[i]);
+    } else if (p.norm() > 0.0) {
+      data_.push[i] = p.normalized();
+      impulse = p.norm();
+    }
+    if (impulse == 0.0) continue;
+    double f = impulse / T, duration = T;
+    if (prs_.actuator_max_force > 0.0 && std::abs(f) > prs_.actuator_max_force) {
+      f = std::copysign(prs_.actuator_max_force, f);
+      if (prs_.impulse_feedback) {
+        // The leg measures the net impulse it gives the body (its force minus its
+        // share s of the weight it was compensating for, shares in proportion to
+        // the legs' impulses) and stays on until that reaches its allocation net of
+        // compensation: F_max T' - s T' = p - s T.
+        double sum = 0.0;
+        for (const auto& q : plan.leg_impulse) sum += q.norm();
+        const double share =
+            sum > 0.0 ? plan.gravity_compensation / T * std::abs(impulse) / sum : 0.0;
+        const double net_rate = prs_.actuator_max_force - share;
+        duration = net_rate > 0.0 ? (std::abs(impulse) - share * T) / net_rate
+                                  : std::abs(impulse) / prs_.actuator_max_force;
       }
-      s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g * tf * tf);
-      s.velocity.z() -= g * tf;
-      const control::StancePlan pred =
-          control::plan_stance(context(t + tf, true), touchdowns, t + tf, s);
-      std::vector<Vector3d> u;
-      if (free_stance) {
-        // The legs' total push plus the weight carried over the stance, placed in
-        // the world and turned into the body frame the body will have at touchdown.
-        Vector3d P = pred.command.P_world;
-        P.z() += total_mass * g * spring_stance;
-        // The hips' mean speed over the stance: the CoM's plus half the change asked.
-        const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass;
-        const bool held_roll = prs.stance_kp[0] > 0.0 || prs.stance_kd[0] > 0.0;
-        // Desired takeoff velocity: lateral as the controller asks, vertical as the
-        // springs return it (the touchdown speed).
-        Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass;
-        v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
-        const Vector3d d = free_leg_direction(P, v_mean, spring_stance, model.rest_length[0],
-                                              prs.max_leg_angle, held_roll, v_takeoff);
-        u.assign(legs, R_td.transpose() * d);
+      ++result.run.warnings["actuator_saturated"];
+    }
+    data_.leg_force[i] = f;
+    data_.off_time[i] = t + duration;
+    data_.armed_force[i] = f;
+    data_.armed_duration[i] = duration;
+    stance_end = std::max(stance_end, data_.off_time[i]);
+    peak = std::max(peak, std::abs(f));
+    H += model_.hip[i].cross(f * duration * data_.push[i]);
+  }
+  current_.peak_leg_force = peak;
+  current_.H_delivered = H;
+  return stance_end;
+}
+
+/// The bottom of a spring stance: the armed actuators fire.
+void RobotRun::on_bottom(double t) {
+  data_.armed = false;
+  double stance_end = t;
+  for (size_t i = 0; i < legs_; ++i) {
+    data_.leg_force[i] = data_.armed_force[i];
+    data_.off_time[i] = t + data_.armed_duration[i];
+    if (data_.leg_force[i] != 0.0) stance_end = std::max(stance_end, data_.off_time[i]);
+  }
+  if (have_stride_) current_.stance_duration = stance_end - current_.t_touchdown;
+  set_actuators();
+}
+
+/// A foot lands (its hip is freed in pitch) or lifts off (its slide takes the leg along
+/// the leg's current direction; the foot's velocity across the line is the hip's to catch).
+/// Energy changes are booked as hip work. Feet that crossed together (a symmetric landing)
+/// switch together: an event fires only once.
+void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
+  const double e_before = msys_.energies(y).total();
+  auto any_free = [&] {
+    bool any = false;
+    for (size_t k = 0; k < legs_; ++k) any = any || sys_.free(k);
+    return any;
+  };
+  const bool was_free = any_free();
+  for (size_t i = 0; i < legs_; ++i) {
+    const double z = y[6 * model_.foot[i] + 2];
+    const bool land = i == first ? !sys_.free(i) : !sys_.free(i) && z <= 0.0;
+    const bool lift = i == first ? sys_.free(i) : sys_.free(i) && z >= kFootLift;
+    pr::Surface& slide = data_.mech.surfaces[model_.slide[i]];
+    if (land) {
+      // The hip turns freely about its pitch axis: the foot is held in the plane of
+      // the leg and the body x axis (a slot), so the leg swings fore-aft but not
+      // sideways (ab/adduction held).
+      const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
+      if (nrm.norm() > 1e-6) {
+        slide.type = pr::SurfaceType::kPlane;
+        slide.bilateral = true;
+        slide.direction = nrm.normalized();
       } else {
-        u = leg_directions(pred, legs, prs.max_leg_angle);
+        slide.nodes.clear();
       }
-      // Level feet: each leg's rest length such that every foot reaches the ground
-      // together at the predicted touchdown attitude R_td (CoM at s.position).
-      std::vector<double> rest(legs);
-      for (size_t i = 0; i < legs; ++i) {
-        rest[i] = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
-      }
-      if (prs.level_feet && free_stance) {
-        double z_mean = 0.0;
-        std::vector<double> hz(legs), dz_leg(legs);
-        for (size_t i = 0; i < legs; ++i) {
-          hz[i] = s.position.z() + (R_td * model.hip[i]).z();
-          dz_leg[i] = (R_td * u[i]).z();
-          z_mean += (hz[i] + model.rest_length[i] * dz_leg[i]) / static_cast<double>(legs);
-        }
-        for (size_t i = 0; i < legs; ++i) {
-          if (sys.free(i) || !(dz_leg[i] < -0.1)) continue;
-          rest[i] = std::clamp((z_mean - hz[i]) / dz_leg[i], 0.75 * model.rest_length[i],
-                               1.25 * model.rest_length[i]);
-        }
-      }
-      const double e_before = msys.energies(y).total();
-      const pr::BodyFrame f = msys.frames(y)[model.body];
-      const Vector3d w = msys.body_omega(model.body, y);
-      for (size_t i = 0; i < legs; ++i) {
-        if (sys.free(i)) continue;  // still on the ground
-        const int foot = model.foot[i];
-        const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, mech.surfaces[model.slide[i]].ghost};
-        const Vector3d hip = msys.node_position(ghost, y);
-        const Vector3d d_old = f.rotation * (-run.push[i]);
-        const Vector3d d_new = f.rotation * u[i];
-        const Vector3d xf = y.segment<3>(6 * foot);
-        // (the spring keeps its deflection when its rest length changes)
-        double& rest_now = mech.connections[static_cast<size_t>(model.leg_spring[i])].rest_length;
-        const double ext = (xf - hip).dot(d_old) + rest[i] - rest_now;
-        rest_now = rest[i];
-        const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass -
-                              (f.com_velocity + w.cross(xf - f.com));
-        const Vector3d xn = hip + ext * d_new;
-        const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
-        y.segment<3>(6 * foot) = xn;
-        y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * vn;
-        mech.surfaces[model.slide[i]].direction = u[i];
-        run.push[i] = -u[i];
-      }
-      common_push = -u[0];  // (a leg still on the ground keeps its direction)
-      book_hip_work(result.monitors, msys.energies(y).total() - e_before);
+      sys_.set_free(i, true);
+    } else if (lift) {
+      lift_foot(i, y);
     }
-  };
+  }
+  const bool now_free = any_free();
+  if (now_free && !was_free) run_.contact_begin = t;
+  if (!now_free && was_free) data_.spring_stance = t - run_.contact_begin;
+  set_actuators();
+  book_work(e_before, y);
+}
 
-  double t = 0.0;
-  size_t next_disturbance = 0;
-  // A run starting in the air places its legs for the first touchdown.
-  if (model.spring_legs && prs.hip_rotation) place_legs(t, y);
-  stepper->reset(sys, t, y);
-  observer.start(*stepper, y);
-  bool running = true;
-  while (running) {
-    double t_target = sim.duration;
-    if (next_disturbance < scene.disturbances.size()) {
-      t_target = std::min(t_target, scene.disturbances[next_disturbance].time);
-    }
-    if (run.stance) {
-      for (size_t i = 0; i < legs; ++i) {
-        if (leg_force[i] != 0.0) t_target = std::min(t_target, off_time[i]);
-      }
-    }
-    std::span<const ode::EventFunction* const> events =
-        armed        ? std::span<const ode::EventFunction* const>(armed_events)
-        : run.stance ? std::span<const ode::EventFunction* const>(stance_events)
-                     : std::span<const ode::EventFunction* const>(flight_events);
-    const int* ids = armed ? armed_ids.data() : run.stance ? stance_ids.data() : flight_ids.data();
-    ode::IntegrateResult r;
-    if (t_target > t) {
-      r = ode::integrate(sys, *stepper, t_target, events, prs.solver, &observer);
-    } else {
-      r.reason = ode::StopReason::kReachedEnd;
-      r.t = t;
-    }
-    t = r.t;
-    y = stepper->y();
-    switch (r.reason) {
-      case ode::StopReason::kStepSizeCollapse:
-        end_run(reduced::RunStatus::kDiverged,
-                "step-size collapse at t = " + fmt(t) + " s" + step_note());
-        running = false;
-        continue;
-      case ode::StopReason::kNonFinite:
-        end_run(reduced::RunStatus::kDiverged,
-                "non-finite state at t = " + fmt(t) + " s" + step_note());
-        running = false;
-        continue;
-      case ode::StopReason::kMaxSteps:
-        end_run(reduced::RunStatus::kDiverged,
-                prs.solver.step_limit_reason(
-                    stepper->counters().steps_accepted + stepper->counters().steps_rejected, t));
-        running = false;
-        continue;
-      case ode::StopReason::kCrawling:
-        end_run(reduced::RunStatus::kDiverged,
-                prs.solver.crawl_reason(r.attempts, t - r.t_start, t));
-        running = false;
-        continue;
-      default:
-        break;
-    }
-    {
-      // The crawl guard over the whole run: events that fire again and again (a foot
-      // chattering at a contact switch) restart integrate() before its own guard trips.
-      const ode::SolverCounters& c = stepper->counters();
-      const long attempts = c.steps_accepted + c.steps_rejected;
-      if (prs.solver.crawling(attempts, t)) {
-        end_run(reduced::RunStatus::kDiverged, prs.solver.crawl_reason(attempts, t, t));
-        running = false;
-        continue;
-      }
-    }
-    const double balance =
-        msys.energies(y).total() + run.dissipated - run.work - result.monitors.hip_work;
-    double drift = std::abs(balance - balance0);
-    double t_blowup = t;
-    if (run.blowup_time >= 0.0) {  // a sample on the way blew up first
-      drift = run.blowup_drift;
-      t_blowup = run.blowup_time;
-    }
-    if (!y.allFinite() || !std::isfinite(balance) || !(drift <= blowup)) {
-      end_run(reduced::RunStatus::kDiverged,
-              "energy blow-up at t = " + fmt(t_blowup) + " s: the balance drifted by " +
-                  fmt(drift) + " J (scale " + fmt(result.monitors.energy_scale) +
-                  " J); stiffness too high for the solver or the step too large" + step_note());
-      break;
-    }
-    result.monitors.energy_drift =
-        std::max({result.monitors.energy_drift, drift, run.sampled_drift});
-    const int event = r.reason == ode::StopReason::kEvent ? ids[r.event_index] : -1;
-    if (event == kFallLow) {
-      end_run(reduced::RunStatus::kFell,
-              "CoM fell below " + fmt(sim.fall_min_height) + " m at t = " + fmt(t) + " s");
-      break;
-    }
-    if (event == kFallTilt) {
-      end_run(reduced::RunStatus::kFell, "body tilted past " + fmt(sim.fall_max_tilt * 180 / M_PI) +
-                                             " deg at t = " + fmt(t) + " s");
-      break;
-    }
-    if (event == kApex) {
-      if (!run.stance && have_stride && !current.has_apex) {
-        current.has_apex = true;
-        current.apex_height = body_com(model, y).x.z();
-        if (prs.hop_trim_gain > 0.0) {
-          // Hop-height feedback: the takeoff speed this apex lacked, asked for next time.
-          const double v_want = std::sqrt(2.0 * g * layer_at(t).scene->controller.hop_height);
-          const double v_got = std::sqrt(2.0 * g * std::max(0.0, current.apex_height - l));
-          hop_trim = std::clamp(hop_trim + prs.hop_trim_gain * (v_want - v_got), -v_want,
-                                prs.hop_trim_max * v_want);
-        }
-        // Everything the legs and the ground gave since touchdown (gravity removed).
-        current.P_delivered = total_momentum(y) - p_touchdown +
-                              Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));
-      }
-      if (!run.stance && model.spring_legs) {
-        // Foot vibration on the leg springs (free fall: the springs would be at rest).
-        const Com c = body_com(model, y);
-        double e = msys.energies(y).leg;
-        for (int f : model.foot) {
-          const Vector3d v = y.segment<3>(6 * f + 3) / mech.masses[f].mass - c.v;
-          e += 0.5 * mech.masses[f].mass * v.squaredNorm();
-        }
-        result.monitors.max_leg_vibration_energy =
-            std::max(result.monitors.max_leg_vibration_energy, e);
-      }
-      if (!run.stance && model.spring_legs && prs.hip_rotation) place_legs(t, y);
-    } else if (event == kTouchdown) {
-      finish_stride(t);
-      ++touchdown_events;
-      if (touchdowns >= sim.max_strides) break;
-      const control::BodyState s = run.body_state(y);
-      const control::StancePlan plan = control::plan_stance(context(t, false), touchdowns, t, s);
-      current = reduced::StrideRecord{};
-      have_stride = true;
-      run.stride_slip = 0.0;
-      current.index = touchdowns++;
-      current.t_touchdown = t;
-      current.position = s.position;
-      current.velocity = s.velocity;
-      current.euler123 = s.euler123;
-      current.omega = s.omega;
-      current.setpoint =
-          scene.controller.setpoint_position + scene.controller.setpoint_velocity * t;
-      current.P_requested = plan.command.P_world;
-      current.H_requested = plan.command.H_body;
-      current.gravity_compensation = plan.gravity_compensation;
-      current.active_legs = plan.active_legs;
-      current.allocation = plan.allocation_status;
-      if (plan.allocation_status != control::AllocationStatus::kOk) {
-        ++res.warnings[plan.allocation_status == control::AllocationStatus::kLimited
-                           ? "allocation_limited"
-                           : "allocation_infeasible"];
-      }
-      p_touchdown = total_momentum(y);
-      // Leg controllers: a constant force along each leg for the stance duration T;
-      // with a force limit the pulse saturates, and with impulse feedback the actuator
-      // stays on until its delivered impulse reaches the allocation (seed 5.4).
-      const double T = prs.actuators ? plan.duration : 0.0;
-      double stance_end = t;
-      Vector3d H = Vector3d::Zero();
-      double peak = 0.0;
-      std::fill(leg_force.begin(), leg_force.end(), 0.0);
-      std::fill(armed_force.begin(), armed_force.end(), 0.0);
-      for (size_t i = 0; i < legs && T > 0.0 && i < plan.leg_impulse.size(); ++i) {
-        const Vector3d p = plan.leg_impulse[i];
-        double impulse = 0.0;  // signed along the push direction [N s]
-        if (model.spring_legs) {
-          impulse = p.dot(run.push[i]);
-        } else if (p.norm() > 0.0) {
-          run.push[i] = p.normalized();
-          impulse = p.norm();
-        }
-        if (impulse == 0.0) continue;
-        double f = impulse / T, duration = T;
-        if (prs.actuator_max_force > 0.0 && std::abs(f) > prs.actuator_max_force) {
-          f = std::copysign(prs.actuator_max_force, f);
-          if (prs.impulse_feedback) {
-            // The leg measures the net impulse it gives the body (its force minus its
-            // share s of the weight it was compensating for, shares in proportion to
-            // the legs' impulses) and stays on until that reaches its allocation net of
-            // compensation: F_max T' - s T' = p - s T.
-            double sum = 0.0;
-            for (const auto& q : plan.leg_impulse) sum += q.norm();
-            const double share =
-                sum > 0.0 ? plan.gravity_compensation / T * std::abs(impulse) / sum : 0.0;
-            const double net_rate = prs.actuator_max_force - share;
-            duration = net_rate > 0.0 ? (std::abs(impulse) - share * T) / net_rate
-                                      : std::abs(impulse) / prs.actuator_max_force;
-          }
-          ++res.warnings["actuator_saturated"];
-        }
-        leg_force[i] = f;
-        off_time[i] = t + duration;
-        armed_force[i] = f;
-        armed_duration[i] = duration;
-        stance_end = std::max(stance_end, off_time[i]);
-        peak = std::max(peak, std::abs(f));
-        H += model.hip[i].cross(f * duration * run.push[i]);
-      }
-      stride_force = leg_force;
-      current.stance_duration = stance_end - t;
-      current.peak_leg_force = peak;
-      current.H_delivered = H;
-      run.stance = stance_end > t;
-      if (run.stance && model.spring_legs) {
-        armed = true;  // fire at the bottom of the stance
-        std::fill(leg_force.begin(), leg_force.end(), 0.0);
-      }
-      sys.set_actuators(leg_force, run.push);
-    } else if (event == kBottom) {
-      armed = false;
-      double stance_end = t;
-      for (size_t i = 0; i < legs; ++i) {
-        leg_force[i] = armed_force[i];
-        off_time[i] = t + armed_duration[i];
-        if (leg_force[i] != 0.0) stance_end = std::max(stance_end, off_time[i]);
-      }
-      if (have_stride) current.stance_duration = stance_end - current.t_touchdown;
-      sys.set_actuators(leg_force, run.push);
-    } else if (event >= kFoot) {
-      // A foot lands (its hip is freed in pitch) or lifts off (its slide takes the leg along
-      // the leg's current direction; the foot's velocity across the line is the
-      // hip's to catch). Energy changes are booked as hip work. Feet that crossed
-      // together (a symmetric landing) switch together: an event fires only once.
-      const size_t first = static_cast<size_t>(event - kFoot);
-      const double e_before = msys.energies(y).total();
-      bool any_free = false;
-      for (size_t k = 0; k < legs; ++k) any_free = any_free || sys.free(k);
-      const bool was_free = any_free;
-      for (size_t i = 0; i < legs; ++i) {
-        const int foot = model.foot[i];
-        const double z = y[6 * foot + 2];
-        const bool land = i == first ? !sys.free(i) : !sys.free(i) && z <= 0.0;
-        const bool lift = i == first ? sys.free(i) : sys.free(i) && z >= kFootLift;
-        pr::Surface& slide = mech.surfaces[model.slide[i]];
-        if (land) {
-          // The hip turns freely about its pitch axis: the foot is held in the plane of
-          // the leg and the body x axis (a slot), so the leg swings fore-aft but not
-          // sideways (ab/adduction held).
-          const Vector3d nrm = slide.direction.cross(Vector3d::UnitX());
-          if (nrm.norm() > 1e-6) {
-            slide.type = pr::SurfaceType::kPlane;
-            slide.bilateral = true;
-            slide.direction = nrm.normalized();
-          } else {
-            slide.nodes.clear();
-          }
-          sys.set_free(i, true);
-        } else if (lift) {
-          const pr::BodyFrame f = msys.frames(y)[model.body];
-          const Vector3d w = msys.body_omega(model.body, y);
-          const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, slide.ghost};
-          const Vector3d xf = y.segment<3>(6 * foot);
-          const Vector3d arm = xf - msys.node_position(ghost, y);
-          if (arm.norm() > 1e-9) {
-            const Vector3d d = arm.normalized();
-            const Vector3d vb = f.com_velocity + w.cross(xf - f.com);
-            const Vector3d vrel = y.segment<3>(6 * foot + 3) / mech.masses[foot].mass - vb;
-            y.segment<3>(6 * foot + 3) = mech.masses[foot].mass * (vb + vrel.dot(d) * d);
-            slide.direction = f.rotation.transpose() * d;
-            run.push[i] = -slide.direction;
-          }
-          slide.type = pr::SurfaceType::kLine;
-          slide.bilateral = false;
-          slide.nodes = model.mechanism.surfaces[model.slide[i]].nodes;
-          sys.set_free(i, false);
-        }
-      }
-      any_free = false;
-      for (size_t k = 0; k < legs; ++k) any_free = any_free || sys.free(k);
-      if (any_free && !was_free) run.contact_begin = t;
-      if (!any_free && was_free) spring_stance = t - run.contact_begin;
-      sys.set_actuators(leg_force, run.push);
-      book_hip_work(result.monitors, msys.energies(y).total() - e_before);
-    } else {
-      // Reached t_target: an actuator switching off, a disturbance, or the end.
-      if (run.stance && !armed) {
-        bool on = false;
-        for (size_t i = 0; i < legs; ++i) {
-          if (leg_force[i] != 0.0 && off_time[i] <= t * (1.0 + 1e-14) + 1e-14) leg_force[i] = 0.0;
-          on = on || leg_force[i] != 0.0;
-        }
-        sys.set_actuators(leg_force, run.push);
-        run.stance = on;
-      }
-      while (next_disturbance < scene.disturbances.size() &&
-             scene.disturbances[next_disturbance].time <= t) {
-        const auto& d = scene.disturbances[next_disturbance++];
-        // Linear impulse shared by the four body masses; angular impulse as the
-        // rigid velocity change dw = I^-1 H (body frame).
-        const pr::BodyFrame f = msys.frames(y)[model.body];
-        const Vector3d dw = f.rotation * (scene.body.inertia.inverse() * d.angular_impulse);
-        const auto& b = mech.bodies[model.body];
-        const double e_before = msys.energies(y).total();
-        const int rot = sys.rotation_state();
-        if (rot >= 0) {  // rigid body: dp on its CoM mass, dL = R H
-          y.segment<3>(6 * b.first_mass + 3) += d.linear_impulse;
-          y.segment<3>(rot + 4) += f.rotation * d.angular_impulse;
-        }
-        for (int k = 0; k < (rot >= 0 ? 0 : 4); ++k) {
-          const int j = b.first_mass + k;
-          const Vector3d arm = y.segment<3>(6 * j) - f.com;
-          y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + mech.masses[j].mass * dw.cross(arm);
-        }
-        book_hip_work(result.monitors, msys.energies(y).total() - e_before);  // external work
-      }
-      if (t >= sim.duration) running = false;
-    }
-    if (running) {
-      observer.restart();
-      stepper->reset(sys, t, y);
-    }
+/// Foot i lifts off: its slide (a line again) takes the leg along its current direction,
+/// the foot's velocity across it removed.
+void RobotRun::lift_foot(size_t i, ode::Vec& y) {
+  const int foot = model_.foot[i];
+  pr::Surface& slide = data_.mech.surfaces[model_.slide[i]];
+  const pr::BodyFrame f = msys_.frames(y)[model_.body];
+  const Vector3d w = msys_.body_omega(model_.body, y);
+  const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, slide.ghost};
+  const Vector3d xf = y.segment<3>(6 * foot);
+  const Vector3d arm = xf - msys_.node_position(ghost, y);
+  if (arm.norm() > 1e-9) {
+    const double m = data_.mech.masses[foot].mass;
+    const Vector3d d = arm.normalized();
+    const Vector3d vb = f.com_velocity + w.cross(xf - f.com);
+    const Vector3d vrel = y.segment<3>(6 * foot + 3) / m - vb;
+    y.segment<3>(6 * foot + 3) = m * (vb + vrel.dot(d) * d);
+    slide.direction = f.rotation.transpose() * d;
+    data_.push[i] = -slide.direction;
   }
-  if (have_stride && !current.has_apex) {
-    current.P_delivered = total_momentum(y) - p_touchdown +
-                          Vector3d(0, 0, total_mass * g * (t - current.t_touchdown));
+  slide.type = pr::SurfaceType::kLine;
+  slide.bilateral = false;
+  slide.nodes = model_.mechanism.surfaces[model_.slide[i]].nodes;
+  sys_.set_free(i, false);
+}
+
+/// Reached the segment's end: an actuator switching off, a disturbance, or the end.
+run::Next RobotRun::on_time(double t, ode::Vec& y) {
+  if (run_.stance && !data_.armed) {
+    bool on = false;
+    for (size_t i = 0; i < legs_; ++i) {
+      double& f = data_.leg_force[i];
+      if (f != 0.0 && data_.off_time[i] <= t * (1.0 + 1e-14) + 1e-14) f = 0.0;
+      on = on || f != 0.0;
+    }
+    set_actuators();
+    run_.stance = on;
   }
+  while (next_disturbance_ < scene_.disturbances.size() &&
+         scene_.disturbances[next_disturbance_].time <= t) {
+    apply_disturbance(scene_.disturbances[next_disturbance_++], y);
+  }
+  return t >= scene_.simulation.duration ? run::Next::kStop : run::Next::kContinue;
+}
+
+/// Linear impulse shared by the four body masses; angular impulse as the rigid velocity
+/// change dw = I^-1 H (body frame). Its energy is booked as external work.
+void RobotRun::apply_disturbance(const scene::Disturbance& d, ode::Vec& y) {
+  const pr::BodyFrame f = msys_.frames(y)[model_.body];
+  const Vector3d dw = f.rotation * (scene_.body.inertia.inverse() * d.angular_impulse);
+  const auto& b = data_.mech.bodies[model_.body];
+  const double e_before = msys_.energies(y).total();
+  const int rot = sys_.rotation_state();
+  if (rot >= 0) {  // rigid body: dp on its CoM mass, dL = R H
+    y.segment<3>(6 * b.first_mass + 3) += d.linear_impulse;
+    y.segment<3>(rot + 4) += f.rotation * d.angular_impulse;
+  }
+  for (int k = 0; k < (rot >= 0 ? 0 : 4); ++k) {
+    const int j = b.first_mass + k;
+    const Vector3d arm = y.segment<3>(6 * j) - f.com;
+    y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + data_.mech.masses[j].mass * dw.cross(arm);
+  }
+  book_work(e_before, y);
+}
+
+/// Hip placement (hip_rotation): plan the stance at the predicted (ballistic) touchdown and
+/// turn each leg in the air along its total impulse; the foot moves with the leg (its
+/// energy change is hip work).
+void RobotRun::place_legs(double t, ode::Vec& y) {
+  control::BodyState s = run_.body_state(y);
+  if (!(s.position.z() - l_ > 0.0)) return;
+  Matrix3d R_td;
+  const std::vector<Vector3d> u = placement(t, y, s, R_td);
+  const std::vector<double> rest = level_rest_lengths(s, R_td, u);
+  const double e_before = msys_.energies(y).total();
+  const pr::BodyFrame f = msys_.frames(y)[model_.body];
+  const Vector3d w = msys_.body_omega(model_.body, y);
+  for (size_t i = 0; i < legs_; ++i) {
+    if (sys_.free(i)) continue;  // still on the ground
+    const int foot = model_.foot[i];
+    const double m = data_.mech.masses[foot].mass;
+    const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, data_.mech.surfaces[model_.slide[i]].ghost};
+    const Vector3d hip = msys_.node_position(ghost, y);
+    const Vector3d d_old = f.rotation * (-data_.push[i]);
+    const Vector3d d_new = f.rotation * u[i];
+    const Vector3d xf = y.segment<3>(6 * foot);
+    // (the spring keeps its deflection when its rest length changes)
+    double& rest_now =
+        data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    const double ext = (xf - hip).dot(d_old) + rest[i] - rest_now;
+    rest_now = rest[i];
+    const Vector3d vrel = y.segment<3>(6 * foot + 3) / m - (f.com_velocity + w.cross(xf - f.com));
+    const Vector3d xn = hip + ext * d_new;
+    const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
+    y.segment<3>(6 * foot) = xn;
+    y.segment<3>(6 * foot + 3) = m * vn;
+    data_.mech.surfaces[model_.slide[i]].direction = u[i];
+    data_.push[i] = -u[i];
+  }
+  data_.common_push = -u[0];  // (a leg still on the ground keeps its direction)
+  book_work(e_before, y);
+}
+
+/// The legs' directions (body frame, unit hip -> foot) for the stance planned at the
+/// predicted ballistic touchdown; s becomes the predicted touchdown state, R_td the body
+/// attitude then (after the flight at constant angular velocity).
+std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::BodyState& s,
+                                          Matrix3d& R_td) const {
+  const double tf = std::sqrt(2.0 * (s.position.z() - l_) / g_);
+  const Vector3d w_world = msys_.body_omega(model_.body, y);
+  R_td = msys_.frames(y)[model_.body].rotation;
+  if (w_world.norm() * tf > 1e-12) {
+    R_td = Eigen::AngleAxisd(w_world.norm() * tf, w_world.normalized()) * R_td;
+  }
+  s.position += s.velocity * tf + Vector3d(0, 0, -0.5 * g_ * tf * tf);
+  s.velocity.z() -= g_ * tf;
+  const control::StancePlan pred =
+      control::plan_stance(control_.context(t + tf, true), touchdowns_, t + tf, s);
+  if (!free_stance_) return leg_directions(pred, legs_, prs_.max_leg_angle);
+  // The legs' total push plus the weight carried over the stance, placed in
+  // the world and turned into the body frame the body will have at touchdown.
+  Vector3d P = pred.command.P_world;
+  P.z() += total_mass_ * g_ * data_.spring_stance;
+  // The hips' mean speed over the stance: the CoM's plus half the change asked.
+  const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass_;
+  const bool held_roll = prs_.stance_kp[0] > 0.0 || prs_.stance_kd[0] > 0.0;
+  // Desired takeoff velocity: lateral as the controller asks, vertical as the
+  // springs return it (the touchdown speed).
+  Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass_;
+  v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
+  const Vector3d d = free_leg_direction(P, v_mean, data_.spring_stance, model_.rest_length[0],
+                                        prs_.max_leg_angle, held_roll, v_takeoff);
+  return std::vector<Vector3d>(legs_, R_td.transpose() * d);
+}
+
+/// Level feet: each leg's rest length such that every foot reaches the ground together at
+/// the predicted touchdown attitude R_td (CoM at s.position); the current ones otherwise.
+std::vector<double> RobotRun::level_rest_lengths(const control::BodyState& s, const Matrix3d& R_td,
+                                                 const std::vector<Vector3d>& u) const {
+  std::vector<double> rest(legs_);
+  for (size_t i = 0; i < legs_; ++i) {
+    rest[i] = data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+  }
+  if (!(prs_.level_feet && free_stance_)) return rest;
+  double z_mean = 0.0;
+  std::vector<double> hz(legs_), dz_leg(legs_);
+  for (size_t i = 0; i < legs_; ++i) {
+    hz[i] = s.position.z() + (R_td * model_.hip[i]).z();
+    dz_leg[i] = (R_td * u[i]).z();
+    z_mean += (hz[i] + model_.rest_length[i] * dz_leg[i]) / static_cast<double>(legs_);
+  }
+  for (size_t i = 0; i < legs_; ++i) {
+    if (sys_.free(i) || !(dz_leg[i] < -0.1)) continue;
+    rest[i] = std::clamp((z_mean - hz[i]) / dz_leg[i], 0.75 * model_.rest_length[i],
+                         1.25 * model_.rest_length[i]);
+  }
+  return rest;
+}
+
+void RobotRun::finish(double t, const ode::Vec& y, const ode::Stepper& stepper) {
+  reduced::RunResult& res = result.run;
+  if (have_stride_ && !current_.has_apex) current_.P_delivered = delivered(t, y);
   finish_stride(-1.0);
-  result.monitors.actuator_work = run.work + result.monitors.hip_work;
-  result.monitors.positive_actuator_work = run.positive_work + result.monitors.positive_hip_work;
-
-  res.t_end = t;
-  const control::BodyState s = run.body_state(y);
-  res.final_position = s.position;
-  res.final_velocity = s.velocity;
-  res.final_euler123 = s.euler123;
-  res.final_omega = s.omega;
-  res.final_attitude = s.attitude;
-  if (res.status == reduced::RunStatus::kCompleted) {
-    res.reason = touchdowns >= sim.max_strides && t < sim.duration
-                     ? "reached " + std::to_string(sim.max_strides) + " strides"
-                     : "reached t = " + fmt(t) + " s";
-  }
+  result.monitors.actuator_work = run_.work + result.monitors.hip_work;
+  result.monitors.positive_actuator_work = run_.positive_work + result.monitors.positive_hip_work;
+  reduced::finish_run(res, t, run_.body_state(y), touchdowns_, scene_);
   // Only finite samples are kept (a diverged run keeps what came before).
   while (!res.trajectory.empty() && !(res.trajectory.back().position.allFinite() &&
                                       std::isfinite(result.samples.back().energies.total()))) {
@@ -1052,12 +1135,25 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
     res.final_euler123.setZero();
     res.final_omega.setZero();
   }
-  result.monitors.zero_length_triggers = msys.zero_length_triggers();
-  res.cost.solver = stepper->counters();
-  res.cost.touchdowns = touchdown_events;
-  res.cost.wall_time =
+  result.monitors.zero_length_triggers = msys_.zero_length_triggers();
+  res.cost.solver = stepper.counters();
+  res.cost.touchdowns = touchdown_events_;
+}
+
+}  // namespace
+
+RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const RobotModel model = build_robot(scene);
+  auto robot = std::make_unique<RobotRun>(scene, model, options);
+  auto stepper = ode::make_stepper(robot->solver(), robot->dimension());
+  ode::Vec y = robot->initial_state();
+  robot->prepare(y);
+  const run::HybridEnd end = run::run_hybrid(*robot, *stepper, 0.0, y);
+  robot->finish(end.t, end.y, *stepper);
+  robot->result.run.cost.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return result;
+  return std::move(robot->result);
 }
 
 }  // namespace pronk::robot
