@@ -635,7 +635,12 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
                                   ode::Vec& y) const {
   if (!has_power_flows_) return 0.0;
   dissipate_before_ = y;
-  const ode::Vec& y_before = dissipate_before_;
+  dissipate_connections(h, y);
+  dissipate_surfaces(h, y);
+  return booked_dissipation(y_ref, dissipate_before_, y);
+}
+
+void MechanismSystem::dissipate_connections(double h, ode::Vec& y) const {
   for (const Connection& c : m_.connections) {
     if (c.kind == ConnectionClass::kActuator) continue;
     if (c.damping == 0.0 && c.friction == 0.0 && c.drag == 0.0) continue;
@@ -678,6 +683,9 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
       }
     }
   }
+}
+
+void MechanismSystem::dissipate_surfaces(double h, ode::Vec& y) const {
   for (const Surface& s : m_.surfaces) {
     if (s.damping == 0.0 && s.friction == 0.0) continue;
     Matrix3d rot = Matrix3d::Identity();
@@ -739,6 +747,10 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
       if (s.body >= 0) add_impulse(g, -j, y);
     }
   }
+}
+
+double MechanismSystem::booked_dissipation(const ode::Vec& y_ref, const ode::Vec& y_before,
+                                           const ode::Vec& y) const {
   // The energy balance of the step: with the momentum changes dP_j of the masses,
   // -sum dP_j . (v_ref_j + dP_j / 2 m_j) (see the header).
   double dissipated = 0.0;

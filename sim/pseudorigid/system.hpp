@@ -165,6 +165,13 @@ class MechanismSystem final : public ode::OdeSystem {
   /// rigid_state without the angular velocity (rotation and world inverse inertia, memoised
   /// on the quaternion alone; omega is not current in the result).
   const RigidState& rigid_pose(int b, const ode::Vec& y) const;
+  /// dissipate()'s implicit velocity updates of the dampers, friction and drag of the
+  /// connections, then of the surfaces' dampers and friction (momenta of y only).
+  void dissipate_connections(double h, ode::Vec& y) const;
+  void dissipate_surfaces(double h, ode::Vec& y) const;
+  /// dissipate()'s booking: -sum dP . (v_ref + dP / 2m) over the momentum changes y - y_before.
+  double booked_dissipation(const ode::Vec& y_ref, const ode::Vec& y_before,
+                            const ode::Vec& y) const;
   /// rhs(): the rigid bodies' rotation rates from torque_.
   void rigid_rates(const ode::Vec& y, ode::Vec& dydt) const;
   void add_block(int row, int col, const Eigen::Matrix3d& b) const;

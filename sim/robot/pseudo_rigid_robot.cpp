@@ -10,27 +10,15 @@ namespace pr = pseudorigid;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-RobotModel build_robot(const scene::Scene& s) {
-  const scene::PseudoRigid& p = s.pseudo_rigid;
-  RobotModel r;
-  r.spring_legs = p.legs == scene::PseudoRigid::Legs::kSpring && !s.legs.body_only;
-  r.body_mass = s.body.mass;
-  pr::Mechanism& m = r.mechanism;
-  m.name = s.name;
-  m.gravity = Vector3d(0.0, 0.0, -s.gravity);
-  m.simulation.solver = p.solver;
-  // Body-level error norm (optional): the solver controls the motion of the body
-  // (CoM, attitude) and of the feet, not the internal vibration of the stiff springs.
-  const bool rigid = p.body == scene::PseudoRigid::BodyKind::kRigid;
-  // (A rigid body's states are body-level already: the setting is unused there.)
-  m.simulation.error_norm =
-      p.body_error_norm && !rigid ? pr::ErrorNorm::kBody : pr::ErrorNorm::kState;
+namespace {
 
-  // Hips: a body-only scene pushes at the CoM through one virtual leg.
-  std::vector<Vector3d> hips =
-      s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
-  const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
-  if (dummy && rigid) throw std::invalid_argument("a rigid body has no dummy hip masses");
+/// The scene's body as the mechanism's body (four masses or one rigid body), with dummy hip
+/// masses taken out of its mass and inertia; *offset: the main masses' centroid relative to
+/// the CoM, body frame [m]. Adds it to r.mechanism and sets r.body.
+pr::BodySpec add_robot_body(const scene::Scene& s, const std::vector<Vector3d>& hips, bool dummy,
+                            bool rigid, RobotModel& r, Vector3d* offset_out) {
+  const scene::PseudoRigid& p = s.pseudo_rigid;
+  pr::Mechanism& m = r.mechanism;
   Vector3d offset = Vector3d::Zero();  // main-mass centroid relative to the CoM, body frame [m]
   // Dummy masses are part of the body: the four main masses carry the rest so the
   // total mass and inertia about the CoM stay those of the scene.
@@ -67,91 +55,135 @@ RobotModel build_robot(const scene::Scene& s) {
   std::string err;
   r.body = pr::add_body(m, b, &err);
   if (r.body < 0) throw std::invalid_argument("body: " + err);
+  *offset_out = offset;
+  return b;
+}
 
+/// Leg i's foot mass, leg spring (with its damper) and slide on the body; hips without spring
+/// legs get placeholders.
+void add_robot_leg(const scene::Scene& s, size_t i, const Vector3d& hip, const Vector3d& offset,
+                   bool dummy, const pr::BodySpec& b, RobotModel& r) {
+  const scene::PseudoRigid& p = s.pseudo_rigid;
+  pr::Mechanism& m = r.mechanism;
   const Matrix3d R = b.attitude;
-  for (size_t i = 0; i < hips.size(); ++i) {
-    const std::string name = "leg" + std::to_string(i);
-    const Vector3d h = hips[i] - offset;  // relative to the main masses' centroid
-    r.hip.push_back(hips[i]);
-    r.direction.push_back(-Vector3d::UnitZ());
-    const pr::NodeRef ghost = pr::add_ghost_point(m, r.body, name + ".hip", h);
-    r.hip_node.push_back(dummy ? pr::add_dummy_mass(m, r.body, name + ".hip_mass", h, p.dummy_ratio,
-                                                    p.internal_stiffness, p.internal_damping)
-                               : ghost);
-    if (!r.spring_legs) {
-      r.foot.push_back(-1);
-      r.slide.push_back(-1);
-      r.rest_length.push_back(0.0);
-      r.leg_spring.push_back(-1);
-      continue;
-    }
-    // The foot touches the ground when the CoM of a level body is at legs.length.
-    const double rest = s.legs.length + hips[i].z();
-    if (!(rest > 0.0)) {
-      throw std::invalid_argument("leg " + std::to_string(i) + ": hip z " + std::to_string(h.z()) +
-                                  " m leaves no leg below it for length " +
-                                  std::to_string(s.legs.length) + " m");
-    }
-    r.rest_length.push_back(rest);
-    const Vector3d arm = R * (h - rest * Vector3d::UnitZ());
-    const pr::NodeRef foot =
-        pr::add_mass(m, name + ".foot", p.foot_mass, b.com + arm, b.velocity + b.omega.cross(arm));
-    r.foot.push_back(foot.index);
-    pr::Connection c;
-    c.name = name + ".spring";
-    c.a = foot;
-    c.b = r.hip_node.back();
-    c.kind = pr::ConnectionClass::kLeg;
-    c.stiffness = p.leg_stiffness;
-    c.rest_length = rest;
-    c.damping = p.leg_damping;
-    r.leg_spring.push_back(static_cast<int>(m.connections.size()));
-    m.connections.push_back(c);
-    pr::Surface slide;
-    slide.name = name + ".slide";
-    slide.type = pr::SurfaceType::kLine;
-    slide.body = r.body;
-    slide.ghost = ghost.index;
-    slide.direction = Vector3d::UnitZ();
-    slide.nodes = {foot};
-    slide.stiffness = p.internal_stiffness;
-    slide.damping = p.internal_damping;
-    r.slide.push_back(static_cast<int>(m.surfaces.size()));
-    m.surfaces.push_back(slide);
+  const std::string name = "leg" + std::to_string(i);
+  const Vector3d h = hip - offset;  // relative to the main masses' centroid
+  r.hip.push_back(hip);
+  r.direction.push_back(-Vector3d::UnitZ());
+  const pr::NodeRef ghost = pr::add_ghost_point(m, r.body, name + ".hip", h);
+  r.hip_node.push_back(dummy ? pr::add_dummy_mass(m, r.body, name + ".hip_mass", h, p.dummy_ratio,
+                                                  p.internal_stiffness, p.internal_damping)
+                             : ghost);
+  if (!r.spring_legs) {
+    r.foot.push_back(-1);
+    r.slide.push_back(-1);
+    r.rest_length.push_back(0.0);
+    r.leg_spring.push_back(-1);
+    return;
   }
-  if (r.spring_legs) {
-    pr::Surface ground;
-    ground.name = "ground";
-    ground.type = pr::SurfaceType::kPlane;
-    ground.point = Vector3d::Zero();
-    ground.direction = Vector3d::UnitZ();
-    for (int f : r.foot) ground.nodes.push_back(pr::NodeRef{pr::NodeRef::Kind::kMass, f});
-    ground.stiffness = p.contact_stiffness;
-    ground.damping = p.contact_damping;
-    ground.friction = p.friction;  // regularised Coulomb on the feet
-    ground.slip_velocity = p.slip_velocity;
-    r.ground = static_cast<int>(m.surfaces.size());
-    m.surfaces.push_back(ground);
+  // The foot touches the ground when the CoM of a level body is at legs.length.
+  const double rest = s.legs.length + hip.z();
+  if (!(rest > 0.0)) {
+    throw std::invalid_argument("leg " + std::to_string(i) + ": hip z " + std::to_string(h.z()) +
+                                " m leaves no leg below it for length " +
+                                std::to_string(s.legs.length) + " m");
   }
-  if (p.internal_auto || p.contact_auto) {
-    pr::StiffnessSettings ss;
-    ss.internal_auto = p.internal_auto;
-    ss.contact_auto = p.contact_auto;
-    ss.strain_budget = p.strain_budget;
-    ss.penetration_budget = p.penetration_budget;
-    r.stiffness = pr::choose_stiffness(m, ss);
-    if (p.internal_auto) {
-      // The leg slides are constraints of the same stiffness class as the body.
-      for (int si : r.slide) {
-        if (si >= 0) m.surfaces[si].stiffness = r.stiffness.internal_max;
-      }
-    }
-    if (p.contact_auto) {
-      for (int si : r.slide) {
-        if (si >= 0 && !p.internal_auto) m.surfaces[si].stiffness = p.internal_stiffness;
-      }
+  r.rest_length.push_back(rest);
+  const Vector3d arm = R * (h - rest * Vector3d::UnitZ());
+  const pr::NodeRef foot =
+      pr::add_mass(m, name + ".foot", p.foot_mass, b.com + arm, b.velocity + b.omega.cross(arm));
+  r.foot.push_back(foot.index);
+  pr::Connection c;
+  c.name = name + ".spring";
+  c.a = foot;
+  c.b = r.hip_node.back();
+  c.kind = pr::ConnectionClass::kLeg;
+  c.stiffness = p.leg_stiffness;
+  c.rest_length = rest;
+  c.damping = p.leg_damping;
+  r.leg_spring.push_back(static_cast<int>(m.connections.size()));
+  m.connections.push_back(c);
+  pr::Surface slide;
+  slide.name = name + ".slide";
+  slide.type = pr::SurfaceType::kLine;
+  slide.body = r.body;
+  slide.ghost = ghost.index;
+  slide.direction = Vector3d::UnitZ();
+  slide.nodes = {foot};
+  slide.stiffness = p.internal_stiffness;
+  slide.damping = p.internal_damping;
+  r.slide.push_back(static_cast<int>(m.surfaces.size()));
+  m.surfaces.push_back(slide);
+}
+
+/// The ground plane under the feet (contact spring and damper, regularised Coulomb friction).
+void add_robot_ground(const scene::PseudoRigid& p, RobotModel& r) {
+  pr::Mechanism& m = r.mechanism;
+  pr::Surface ground;
+  ground.name = "ground";
+  ground.type = pr::SurfaceType::kPlane;
+  ground.point = Vector3d::Zero();
+  ground.direction = Vector3d::UnitZ();
+  for (int f : r.foot) ground.nodes.push_back(pr::NodeRef{pr::NodeRef::Kind::kMass, f});
+  ground.stiffness = p.contact_stiffness;
+  ground.damping = p.contact_damping;
+  ground.friction = p.friction;  // regularised Coulomb on the feet
+  ground.slip_velocity = p.slip_velocity;
+  r.ground = static_cast<int>(m.surfaces.size());
+  m.surfaces.push_back(ground);
+}
+
+/// "auto" internal or contact stiffness: chosen from the mechanism's strain and penetration
+/// budgets; the leg slides follow the body's stiffness class.
+void choose_robot_stiffness(const scene::PseudoRigid& p, RobotModel& r) {
+  pr::Mechanism& m = r.mechanism;
+  pr::StiffnessSettings ss;
+  ss.internal_auto = p.internal_auto;
+  ss.contact_auto = p.contact_auto;
+  ss.strain_budget = p.strain_budget;
+  ss.penetration_budget = p.penetration_budget;
+  r.stiffness = pr::choose_stiffness(m, ss);
+  if (p.internal_auto) {
+    // The leg slides are constraints of the same stiffness class as the body.
+    for (int si : r.slide) {
+      if (si >= 0) m.surfaces[si].stiffness = r.stiffness.internal_max;
     }
   }
+  if (p.contact_auto) {
+    for (int si : r.slide) {
+      if (si >= 0 && !p.internal_auto) m.surfaces[si].stiffness = p.internal_stiffness;
+    }
+  }
+}
+
+}  // namespace
+
+RobotModel build_robot(const scene::Scene& s) {
+  const scene::PseudoRigid& p = s.pseudo_rigid;
+  RobotModel r;
+  r.spring_legs = p.legs == scene::PseudoRigid::Legs::kSpring && !s.legs.body_only;
+  r.body_mass = s.body.mass;
+  pr::Mechanism& m = r.mechanism;
+  m.name = s.name;
+  m.gravity = Vector3d(0.0, 0.0, -s.gravity);
+  m.simulation.solver = p.solver;
+  // Body-level error norm (optional): the solver controls the motion of the body
+  // (CoM, attitude) and of the feet, not the internal vibration of the stiff springs.
+  const bool rigid = p.body == scene::PseudoRigid::BodyKind::kRigid;
+  // (A rigid body's states are body-level already: the setting is unused there.)
+  m.simulation.error_norm =
+      p.body_error_norm && !rigid ? pr::ErrorNorm::kBody : pr::ErrorNorm::kState;
+
+  // Hips: a body-only scene pushes at the CoM through one virtual leg.
+  std::vector<Vector3d> hips =
+      s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
+  const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
+  if (dummy && rigid) throw std::invalid_argument("a rigid body has no dummy hip masses");
+  Vector3d offset = Vector3d::Zero();
+  const pr::BodySpec b = add_robot_body(s, hips, dummy, rigid, r, &offset);
+  for (size_t i = 0; i < hips.size(); ++i) add_robot_leg(s, i, hips[i], offset, dummy, b, r);
+  if (r.spring_legs) add_robot_ground(p, r);
+  if (p.internal_auto || p.contact_auto) choose_robot_stiffness(p, r);
   std::string why;
   if (!m.validate(&why)) throw std::invalid_argument("robot mechanism: " + why);
   return r;
