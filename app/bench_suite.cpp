@@ -465,7 +465,7 @@ FidelityPoint full_model_rung(const scene::Scene& s, const BenchConfig& c, bool 
     return p;
   }
   scene::Scene sp = s;
-  sp.model = scene::ModelKind::kPulse;
+  sp.model = scene::ModelKind::kPseudoRigid;  // (simulate() runs the scene's model)
   sp.pseudo_rigid.legs = scene::PseudoRigid::Legs::kForce;
   // Internal springs of 1e6 N/m: at the scene's 1e5 N/m the 50 ms pulses strain the body
   // by several per cent and it falls after three strides where the rigid models run on

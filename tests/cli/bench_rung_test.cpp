@@ -1,0 +1,43 @@
+// The fidelity ladder's full-model rungs run the full model: the pseudo-rigid rung (four
+// masses on 1e6 N/m springs) and the rigid rung, against the pulse rung on the same robot.
+#include <cmath>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "app/bench_suite.hpp"
+#include "sim/io/scene_loader.hpp"
+
+TEST_CASE("fidelity ladder: the full-model rungs run the full model, not the pulse model",
+          "[cli][bench][heavy]") {
+  pronk::app::bench::BenchConfig c;
+  c.quick = false;
+  c.repeat = 1;
+  c.studies_dir = std::string(PRONK_SOURCE_DIR) + "/studies";
+  pronk::scene::Scene s = pronk::io::load_scene(c.studies_dir + "/scenes/case3_legged_pulse.json");
+  s.simulation.duration = 2.0;
+  pronk::app::bench::FidelityPoint pulse, rigid, four;
+  for (const auto& rung : pronk::app::bench::fidelity_rungs()) {
+    if (rung.model == "pulse") pulse = rung.run(s, c);
+    if (rung.model == "rigid") rigid = rung.run(s, c);
+    if (rung.model == "pseudo_rigid") four = rung.run(s, c);
+  }
+  INFO("pulse " << pulse.cost_per_sim_s << " s/s; rigid " << rigid.cost_per_sim_s << " s/s ("
+                << rigid.note << "); four-mass " << four.cost_per_sim_s << " s/s (" << four.note
+                << ")");
+  REQUIRE(four.status == "completed");
+  REQUIRE(rigid.status == "completed");
+  // Only the full model reports its internal stiffness (the pulse model has none).
+  CHECK(four.note.find("internal k 1000000") != std::string::npos);
+  // The full model's stiff springs and contacts cost orders of magnitude more per simulated
+  // second than the pulse model's few steps per stride (a rung that ran the pulse model
+  // cost the same as the pulse rung).
+  CHECK(four.cost_per_sim_s > 30.0 * pulse.cost_per_sim_s);
+  // The rigid body with force legs has no feet and no springs: it is the pulse model's motion
+  // (tests/robot/rigid_body_test.cpp), but on RODAS4 with a difference Jacobian: measured 7x the
+  // pulse model's cost.
+  CHECK(rigid.cost_per_sim_s > 3.0 * pulse.cost_per_sim_s);
+  // Same robot, same gait: the apexes agree to a few millimetres.
+  CHECK(std::abs(four.mean_apex - pulse.mean_apex) < 0.01);
+  CHECK(std::abs(rigid.mean_apex - pulse.mean_apex) < 0.01);
+}
