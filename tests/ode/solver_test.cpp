@@ -158,6 +158,7 @@ long stages(Method m) {
       return 6;
     case Method::kRodas4:  // not part of this generic suite
     case Method::kRadau5:
+    case Method::kCvodeBdf:
     case Method::kVerlet:
       break;
   }
