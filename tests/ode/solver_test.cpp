@@ -121,8 +121,9 @@ OrderCase order_case(Method m) {
       return {4.0, {20, 40, 80, 160}};
     case Method::kDopri5:
       return {5.0, {40, 80, 160}};
-    case Method::kRodas4:  // stiff solvers: rosenbrock_test.cpp, radau5_test.cpp
+    case Method::kRodas4:  // stiff solvers: rosenbrock_test.cpp, radau5_test.cpp, cvode_test.cpp
     case Method::kRadau5:
+    case Method::kCvodeBdf:
     case Method::kVerlet:  // mechanical systems only: verlet_test.cpp
       break;
   }
