@@ -279,10 +279,10 @@ TEST_CASE("rigid body on verlet keeps the energy balance and agrees with RODAS4"
 // to 3.5e-4 for 0.6 % more steps).
 TEST_CASE("rigid body on verlet with the energy budget keeps the balance over 10 s (pr_running)",
           "[rigid][robot]") {
-  const robot::RobotRunResult r = robot::simulate(rb_load(
-      "pr_running.json",
-      {"/pseudo_rigid/body=\"rigid\"",
-       R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4,"energy_tol":1e-5})"}));
+  const robot::RobotRunResult r = robot::simulate(
+      rb_load("pr_running.json",
+              {"/pseudo_rigid/body=\"rigid\"",
+               R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":1.5e-4,"energy_tol":1e-5})"}));
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
   REQUIRE(r.run.t_end == 10.0);
   double worst = 0.0;
