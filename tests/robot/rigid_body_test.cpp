@@ -148,10 +148,10 @@ TEST_CASE("rigid body: scene setting, unused settings, refused dummy hips", "[ri
 
 namespace {
 
-/// Rigid vs four-mass body on one scene at internal stiffness 1e7 N/m (both: the slides too).
+/// Rigid vs four-mass body on one scene at an internal stiffness [N/m] (both: the slides too).
 void rb_agree(const std::string& scene, const std::vector<std::string>& extra, size_t min_strides,
-              double attitude_bar) {
-  std::vector<std::string> set = {"/pseudo_rigid/internal_stiffness=1e7"};
+              double attitude_bar, double apex_bar = 1e-3, const char* stiffness = "1e7") {
+  std::vector<std::string> set = {std::string("/pseudo_rigid/internal_stiffness=") + stiffness};
   set.insert(set.end(), extra.begin(), extra.end());
   const robot::RobotRunResult four = robot::simulate(rb_load(scene, set));
   set.push_back("/pseudo_rigid/body=\"rigid\"");
@@ -163,7 +163,7 @@ void rb_agree(const std::string& scene, const std::vector<std::string>& extra, s
   REQUIRE(four.run.strides.size() >= min_strides);
   const robot::FidelityDiscrepancy d = robot::compare_strides(four.run, rigid.run);
   INFO("apex " << d.max_apex << " m, touchdown attitude " << d.max_attitude / kRbDeg << " deg");
-  CHECK(d.max_apex <= 1e-3);
+  CHECK(d.max_apex <= apex_bar);
   CHECK(d.max_attitude <= attitude_bar);
   CHECK(rigid.monitors.max_strain == 0.0);  // no internal springs
   CHECK(four.monitors.max_strain > 0.0);
@@ -203,10 +203,20 @@ TEST_CASE("rigid body with force legs reproduces the pulse model (case5 hop heig
 
 TEST_CASE("rigid body agrees with the four-mass body stride by stride (pr_running)",
           "[rigid][robot][heavy]") {
-  // Measured: apexes within 2.4e-4 m, touchdown attitude within 0.162 deg over the 46 strides:
-  // the 0.1 deg aimed at is not met on the running gait (friction, slots, stance feedback);
-  // the bar is the measured value with margin.
+  // Measured: apexes within 2.4e-4 m, touchdown attitude within 0.162 deg over the 50 strides:
+  // the 0.1 deg aimed at is not met at 1e7 N/m. The gap is the four-mass body's flexibility,
+  // not an error of the rigid body: the gait's period-2 roll oscillation is barely damped
+  // (amplitude 0.31 deg four-mass, 0.15 deg rigid) and the gap shrinks as the body stiffens
+  // (next test). The bar is the measured value with margin.
   rb_agree("pr_running.json", {}, 40, 0.2 * kRbDeg);
+}
+
+TEST_CASE("the four-mass body converges to the rigid body as it stiffens (pr_running, 1e8 N/m)",
+          "[rigid][robot][heavy]") {
+  // Measured over 10 s (50 strides): 0.0195 deg and 3.1e-5 m at 1e8 N/m against 0.162 deg and
+  // 2.4e-4 m at 1e7 (the solvers' share is below 1e-3 deg: RODAS4 at rtol 1e-9 moves the rigid
+  // run's attitudes by less). 5 s here (25 strides), the bars with margin.
+  rb_agree("pr_running.json", {"/simulation/duration=5"}, 20, 0.05 * kRbDeg, 1e-4, "1e8");
 }
 
 // Verlet past its stability limit with the rigid body (h = 1 ms: the 1 g feet on the 1e5 N/m
