@@ -5,6 +5,7 @@
 namespace pronk::io {
 
 using json = nlohmann::json;
+using Thrust = scene::PseudoRigid::Thrust;
 
 namespace {
 
@@ -79,6 +80,10 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
+  p.thrust = r.choice_or("thrust", std::string(p.thrust == Thrust::kEnergy ? "energy" : "impulse"),
+                         {"impulse", "energy"}) == "energy"
+                 ? Thrust::kEnergy
+                 : Thrust::kImpulse;
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -137,6 +142,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"level_feet", p.level_feet},
             {"hop_trim_gain", p.hop_trim_gain},
             {"hop_trim_max", p.hop_trim_max},
+            {"thrust", p.thrust == Thrust::kEnergy ? "energy" : "impulse"},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},
@@ -196,7 +202,7 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
         for (const char* k :
              {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
               "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet",
-              "hop_trim_gain", "hop_trim_max", "pulse_start"}) {
+              "hop_trim_gain", "hop_trim_max", "thrust"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       } else if (!s.pseudo_rigid.hip_rotation) {

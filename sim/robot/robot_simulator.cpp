@@ -14,6 +14,7 @@
 #include "sim/pseudorigid/stability.hpp"
 #include "sim/reduced/run_record.hpp"
 #include "sim/robot/robot_system.hpp"
+#include "sim/robot/thrust_law.hpp"
 #include "sim/run/hybrid_run.hpp"
 
 namespace pronk::robot {
@@ -471,7 +472,8 @@ struct RunData {
   std::vector<double> armed_force, armed_duration;
   Vector3d common_push = Vector3d::UnitZ();  ///< legs' push direction, body frame
   double spring_stance = 0.0;                ///< expected stance duration of spring legs [s]
-  double hop_trim = 0.0;  ///< hop-height feedback: extra takeoff speed asked [m/s]
+  double hop_trim = 0.0;   ///< hop-height feedback: extra takeoff speed asked [m/s]
+  double apex_trim = 0.0;  ///< hop-height feedback of the energy thrust: extra apex asked [m]
 };
 
 /// The same three control layers as the reduced models, planned as constant-force pulses
@@ -621,7 +623,8 @@ class RobotRun final : public run::HybridModel {
   void on_apex(double t, ode::Vec& y);
   run::Next on_touchdown(double t, const ode::Vec& y);
   double command_actuators(const control::StancePlan& plan, double t);
-  void on_bottom(double t);
+  void on_bottom(double t, const ode::Vec& y);
+  double energy_thrust(double t, const ode::Vec& y);
   void on_foot(size_t first, double t, ode::Vec& y);
   void lift_foot(size_t i, ode::Vec& y);
   run::Next on_time(double t, ode::Vec& y);
@@ -759,7 +762,7 @@ run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
     case kTouchdown:
       return on_touchdown(t, y);
     case kBottom:
-      on_bottom(t);
+      on_bottom(t, y);
       return run::Next::kContinue;
     case -1:
       return on_time(t, y);
@@ -797,7 +800,13 @@ void RobotRun::on_apex(double t, ode::Vec& y) {
   if (!run_.stance && have_stride_ && !current_.has_apex) {
     current_.has_apex = true;
     current_.apex_height = body_com(model_, y).x.z();
-    if (prs_.hop_trim_gain > 0.0) {
+    const double h = control_.hop_height(t);
+    if (prs_.hop_trim_gain > 0.0 && prs_.thrust == scene::PseudoRigid::Thrust::kEnergy) {
+      // The energy thrust's feedback: the apex it missed, asked for on top next time.
+      data_.apex_trim =
+          std::clamp(data_.apex_trim + prs_.hop_trim_gain * (l_ + h - current_.apex_height), -h,
+                     prs_.hop_trim_max * h);
+    } else if (prs_.hop_trim_gain > 0.0) {
       // Hop-height feedback: the takeoff speed this apex lacked, asked for next time.
       const double v_want = std::sqrt(2.0 * g_ * control_.hop_height(t));
       const double v_got = std::sqrt(2.0 * g_ * std::max(0.0, current_.apex_height - l_));
@@ -898,8 +907,14 @@ double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
 }
 
 /// The bottom of a spring stance: the armed actuators fire.
-void RobotRun::on_bottom(double t) {
+void RobotRun::on_bottom(double t, const ode::Vec& y) {
   data_.armed = false;
+  if (prs_.thrust == scene::PseudoRigid::Thrust::kEnergy) {
+    const double stance_end = energy_thrust(t, y);
+    if (have_stride_) current_.stance_duration = stance_end - current_.t_touchdown;
+    set_actuators();
+    return;
+  }
   double stance_end = t;
   for (size_t i = 0; i < legs_; ++i) {
     data_.leg_force[i] = data_.armed_force[i];
@@ -908,6 +923,70 @@ void RobotRun::on_bottom(double t) {
   }
   if (have_stride_) current_.stance_duration = stance_end - current_.t_touchdown;
   set_actuators();
+}
+
+/// The energy thrust (PseudoRigid::Thrust::kEnergy) at the bottom of the stance. The grounded
+/// legs' springs and dampers lumped vertically give the collective vertical force that reaches
+/// the target apex (thrust_law.hpp), held to the predicted lift-off. It is shared among the
+/// grounded legs (share_thrust) so that their total moment about the CoM (roll, pitch) is the
+/// planned one: the plan's differential impulses spread over the same time; the collective
+/// itself, on legs that lean, adds none. Returns the stance's end [s].
+double RobotRun::energy_thrust(double t, const ode::Vec& y) {
+  const Vector3d com = body_com(model_, y).x;
+  std::fill(data_.leg_force.begin(), data_.leg_force.end(), 0.0);
+  std::vector<size_t> on;
+  std::vector<Vector3d> u, arm;
+  double K = 0.0, C = 0.0, s_v = 0.0, f_mean = 0.0;
+  for (size_t i = 0; i < legs_; ++i) {
+    if (data_.armed_force[i] == 0.0 || model_.leg_spring[i] < 0) continue;
+    const Vector3d foot = y.segment<3>(6 * model_.foot[i]);
+    const Vector3d hip = msys_.node_position(model_.hip_node[i], y);
+    const Vector3d leg = hip - foot;
+    if (foot.z() > kFootLift || !(leg.z() > 0.1 * leg.norm())) continue;  // not pushing up
+    const double dz = leg.z() / leg.norm();
+    const double rest =
+        data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    K += prs_.leg_stiffness * dz * dz;
+    C += prs_.leg_damping * dz * dz;
+    s_v += (rest - leg.norm()) * dz;
+    f_mean += data_.armed_force[i];
+    on.push_back(i);
+    u.push_back(leg.normalized());
+    arm.push_back(hip - com);
+  }
+  const size_t n = on.size();
+  if (n == 0) return t;
+  f_mean /= static_cast<double>(n);
+  ThrustModel m;
+  m.mass = scene_.body.mass;
+  m.gravity = g_;
+  m.stiffness = K;
+  m.damping = C;
+  m.z_bottom = com.z();
+  m.z_rest = com.z() + s_v / static_cast<double>(n);
+  double dz_sum = 0.0;
+  for (const Vector3d& d : u) dz_sum += d.z();
+  const double f_max =
+      prs_.actuator_max_force > 0.0 ? prs_.actuator_max_force * dz_sum : 20.0 * m.mass * g_;
+  const double apex = l_ + control_.hop_height(t) + data_.apex_trim;
+  const ThrustPlan plan = plan_thrust(m, apex, -0.5 * K * (m.z_rest - m.z_bottom), f_max);
+  if (plan.saturated) ++result.run.warnings["thrust_saturated"];
+  const double T = std::max(plan.duration, 1e-6);
+  std::vector<double> planned(n);
+  for (size_t k = 0; k < n; ++k) {
+    planned[k] = (data_.armed_force[on[k]] - f_mean) * data_.armed_duration[on[k]] / T;
+  }
+  const std::vector<double> f = share_thrust(plan.force, u, arm, planned);
+  for (size_t k = 0; k < n; ++k) {
+    data_.leg_force[on[k]] = f[k];
+    data_.off_time[on[k]] = t + T;
+  }
+  data_.stride_force = data_.leg_force;
+  current_.peak_leg_force = 0.0;
+  for (double fi : data_.leg_force) {
+    current_.peak_leg_force = std::max(current_.peak_leg_force, std::abs(fi));
+  }
+  return t + T;
 }
 
 /// A foot lands (its hip is freed in pitch) or lifts off (its slide takes the leg along

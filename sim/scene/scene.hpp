@@ -158,6 +158,16 @@ struct PseudoRigid {
   /// [-1, hop_trim_max] x sqrt(2 g h). Legs whose dampers take much of the stance
   /// energy need more than one sqrt(2 g h) [-].
   double hop_trim_max = 1.0;
+  /// How spring legs thrust (actuators on from the bottom of the stance):
+  /// kImpulse: each leg's planned impulse as a constant force over the pulse duration
+  /// (the planned impulse assumes an elastic rebound; hop_trim_gain makes up the losses);
+  /// kEnergy: the collective force that sends the body to the target apex by the legs'
+  /// spring-damper model (sim/robot/thrust_law.hpp), held until the predicted lift-off, the
+  /// legs' differential (attitude) impulses spread over the same time; hop_trim_gain then
+  /// trims the target apex by the measured apex error (x gain per stride, within
+  /// [-1, hop_trim_max] x h).
+  enum class Thrust { kImpulse, kEnergy };
+  Thrust thrust = Thrust::kImpulse;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
