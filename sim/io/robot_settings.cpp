@@ -80,6 +80,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
+  p.position_trim_gain = r.number_or("position_trim_gain", p.position_trim_gain, 0.0, 2.0);
   p.thrust = r.choice_or("thrust", std::string(p.thrust == Thrust::kEnergy ? "energy" : "impulse"),
                          {"impulse", "energy"}) == "energy"
                  ? Thrust::kEnergy
@@ -143,6 +144,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"hop_trim_gain", p.hop_trim_gain},
             {"hop_trim_max", p.hop_trim_max},
             {"thrust", p.thrust == Thrust::kEnergy ? "energy" : "impulse"},
+            {"position_trim_gain", p.position_trim_gain},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},
@@ -180,6 +182,13 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       out = {"/attitude", "/simulation/solver"};
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring) {
         out.push_back("/pulse/gravity_compensation");
+        // The energy thrust sizes and times the force itself: the planned impulses count,
+        // not the pulse duration they were planned over (unless the hop law plans with it or
+        // a force limit stretches the pulses).
+        if (s.pseudo_rigid.thrust == Thrust::kEnergy && !s.controller.pulse_aware_hop &&
+            s.pseudo_rigid.actuator_max_force == 0.0) {
+          out.push_back("/pulse/duration");
+        }
       }
       if (s.pseudo_rigid.hips == scene::PseudoRigid::Hips::kGhost) {
         out.push_back("/pseudo_rigid/dummy_ratio");

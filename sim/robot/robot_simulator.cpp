@@ -474,6 +474,7 @@ struct RunData {
   double spring_stance = 0.0;                ///< expected stance duration of spring legs [s]
   double hop_trim = 0.0;   ///< hop-height feedback: extra takeoff speed asked [m/s]
   double apex_trim = 0.0;  ///< hop-height feedback of the energy thrust: extra apex asked [m]
+  Vector3d position_trim = Vector3d::Zero();  ///< integral action: position offset seen [m]
 };
 
 /// The same three control layers as the reduced models, planned as constant-force pulses
@@ -616,6 +617,11 @@ class RobotRun final : public run::HybridModel {
     have_stride_ = false;
   }
   void set_actuators() { sys_.set_actuators(data_.leg_force, data_.push); }
+  /// The body state the controller sees: the position offset by the integral action.
+  control::BodyState trimmed(control::BodyState s) const {
+    s.position.head<2>() += data_.position_trim.head<2>();
+    return s;
+  }
   void book_work(double e_before, const ode::Vec& y) {
     book_hip_work(result.monitors, msys_.energies(y).total() - e_before);
   }
@@ -835,8 +841,16 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
   ++touchdown_events_;
   if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
   const control::BodyState s = run_.body_state(y);
+  if (prs_.position_trim_gain > 0.0) {
+    const Vector3d x_d =
+        scene_.controller.setpoint_position + scene_.controller.setpoint_velocity * t;
+    for (int k = 0; k < 2; ++k) {
+      data_.position_trim[k] = std::clamp(
+          data_.position_trim[k] + prs_.position_trim_gain * (s.position[k] - x_d[k]), -0.5, 0.5);
+    }
+  }
   const control::StancePlan plan =
-      control::plan_stance(control_.context(t, false), touchdowns_, t, s);
+      control::plan_stance(control_.context(t, false), touchdowns_, t, trimmed(s));
   current_ = reduced::open_stride(touchdowns_++, t, s, plan, scene_, result.run.warnings);
   have_stride_ = true;
   run_.stride_slip = 0.0;
@@ -1098,7 +1112,7 @@ void RobotRun::apply_disturbance(const scene::Disturbance& d, ode::Vec& y) {
 /// turn each leg in the air along its total impulse; the foot moves with the leg (its
 /// energy change is hip work).
 void RobotRun::place_legs(double t, ode::Vec& y) {
-  control::BodyState s = run_.body_state(y);
+  control::BodyState s = trimmed(run_.body_state(y));
   if (!(s.position.z() - l_ > 0.0)) return;
   Matrix3d R_td;
   const std::vector<Vector3d> u = placement(t, y, s, R_td);

@@ -167,6 +167,12 @@ struct PseudoRigid {
   /// trims the target apex by the measured apex error (x gain per stride, within
   /// [-1, hop_trim_max] x h).
   enum class Thrust { kImpulse, kEnergy };
+  /// Position feedback's integral action, per stride: at each touchdown the controller's
+  /// measured horizontal position is offset by the running sum of gain x (x - x_d) over the
+  /// touchdowns so far (within +-0.5 m), so a steady force bias the body controller's PD
+  /// would balance with a standing error (the full model's leaning legs under a moving
+  /// setpoint) is learnt away; 0 = off [-].
+  double position_trim_gain = 0.0;
   Thrust thrust = Thrust::kImpulse;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
