@@ -423,6 +423,18 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     check_error(parse_error(doc), "/pseudo_rigid/hop_trim_gain", "a finite number in [0, 2]",
                 "number -0.1");
   }
+  SECTION("thrust law and integral position action") {
+    doc["pseudo_rigid"]["thrust"] = "spring";
+    const std::string e = parse_error(doc).what();
+    CHECK(e.find("/pseudo_rigid/thrust") != std::string::npos);
+    CHECK(e.find("impulse") != std::string::npos);
+    CHECK(e.find("energy") != std::string::npos);
+    CHECK(e.find("spring") != std::string::npos);
+    doc["pseudo_rigid"]["thrust"] = "energy";
+    doc["pseudo_rigid"]["position_trim_gain"] = 3;
+    check_error(parse_error(doc), "/pseudo_rigid/position_trim_gain", "a finite number in [0, 2]",
+                "number 3");
+  }
   SECTION("max_strides 0") {
     doc["simulation"]["max_strides"] = 0;
     check_error(parse_error(doc), "/simulation/max_strides", "an integer in [1, 1000000000]",

@@ -1,11 +1,13 @@
 // The energy thrust law of spring legs (sim/robot/thrust_law.hpp) against the closed-form
 // undamped solution, its inverse (the force for a target apex), the legs' shares, and the
 // running robot holding its target apex with it.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/robot/thrust_law.hpp"
 #include "sim/simulate.hpp"
@@ -130,4 +132,16 @@ TEST_CASE("energy thrust: the running robot holds its target apex within 3 %", "
   INFO("worst apex error after stride 5: energy " << energy << ", impulse " << impulse);
   CHECK(energy <= 0.03);
   CHECK(impulse > 0.1);
+}
+
+TEST_CASE("energy thrust: the pulse duration is listed unused (no force limit)", "[thrust]") {
+  const std::string path = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
+  auto listed = [&](std::vector<std::string> set) {
+    const auto unused = pronk::io::unused_settings(pronk::io::load_scene(path, set));
+    return std::find(unused.begin(), unused.end(), "/pulse/duration") != unused.end();
+  };
+  CHECK_FALSE(listed({}));
+  CHECK(listed({"/pseudo_rigid/thrust=\"energy\""}));
+  // A force limit stretches the pulses: their duration counts again.
+  CHECK_FALSE(listed({"/pseudo_rigid/thrust=\"energy\"", "/pseudo_rigid/actuator_max_force=20"}));
 }
