@@ -6,6 +6,7 @@
 
 #include "optimize/study.hpp"
 #include "sim/io/json_reader.hpp"
+#include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 
@@ -309,6 +310,20 @@ void check_map_study_axes(const io::JsonReader& r, const std::string& file, cons
       throw io::InputError(st.scene_file, "/pulse/mode",
                            "\"duration\" (axis " + std::to_string(i) + " sets the pulse duration)",
                            "\"max_force\"");
+    }
+    for (const scene::ModelKind m : st.models) {
+      // A duty axis sets the pulse duration: a model that ignores it (the full model's energy
+      // thrust times its own force) would give a flat, silently meaningless row.
+      scene::Scene s = st.base_scene;
+      s.model = m;
+      const std::vector<std::string> unused = io::unused_settings(s);
+      if (a.kind == AxisKind::kDutyCycle &&
+          std::find(unused.begin(), unused.end(), "/pulse/duration") != unused.end()) {
+        throw io::InputError(file, "/axes/" + std::to_string(i) + "/kind",
+                             "an axis every model uses (the " + std::string(to_string(m)) +
+                                 " model ignores /pulse/duration)",
+                             "\"duty_cycle\"");
+      }
     }
     if (a.kind == AxisKind::kDisturbanceDirection) {
       const bool has_kick = std::any_of(st.axes.begin(), st.axes.end(), [](const MapAxis& b) {

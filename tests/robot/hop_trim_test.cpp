@@ -14,12 +14,17 @@ namespace {
 
 // Mean |apex - target| over strides 10..end, and the mean signed error [m].
 std::pair<double, double> hop_trim_apex_error(double trim_max) {
-  const std::string scene_path =
-      std::string(PRONK_SOURCE_DIR) +
-      "/results/study3_full_model_running/stages/2_full/tuned/scene.resolved.json";
+  // pr_running on Verlet with the impulse thrust and the gains study 3 tuned for it before it
+  // moved to the energy thrust.
+  const std::string scene_path = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
   const pronk::scene::Scene s = pronk::io::load_scene(
       scene_path,
-      {"/simulation/duration=10", "/pseudo_rigid/hop_trim_max=" + std::to_string(trim_max)});
+      {R"(/pseudo_rigid/solver={"method": "verlet", "h_fixed": 1.5e-4})", "/pulse/duration=0.04405",
+       "/controller/kp/3=0.0414", "/controller/kd/3=0.00597", "/controller/kp/4=0.003374",
+       "/controller/kd/4=0.006554", "/pseudo_rigid/leg_stiffness=996",
+       "/pseudo_rigid/leg_damping=9.89", "/pseudo_rigid/stance_attitude/kp=[19.4,24.58]",
+       "/pseudo_rigid/stance_attitude/kd=[0.9435,1.039]", "/pseudo_rigid/hop_trim_gain=0.6065",
+       "/simulation/duration=10", "/pseudo_rigid/hop_trim_max=" + std::to_string(trim_max)});
   pronk::RunOptions o;
   o.record_trajectory = false;
   const pronk::RunResult r = pronk::simulate(s, o);

@@ -1,0 +1,33 @@
+# Fraction stabilized map of map_study3_full_tilt_offset (written by pronk map; restyle and run: gnuplot fraction.gp)
+set terminal svg size 900,640 dynamic enhanced font 'Helvetica,11'
+set output 'fraction.svg'
+set title 'Fraction of 8 trials stabilized (pseudo_rigid model)' noenhanced
+set palette defined (0 '#b2182b', 0.5 '#f7f7f7', 1 '#2166ac')
+set cbrange [0:1]
+set xlabel 'lateral_offset [m]' noenhanced
+set ylabel 'tilt_deg [deg]' noenhanced
+set xrange [-0.05:0.45000000000000007]
+set yrange [-2.5:12.5]
+set key outside bottom center horizontal
+# x y x_lo x_hi y_lo y_hi value
+$cells << EOD
+0 0 -0.05 0.05 -2.5 2.5 0.5
+0.1 0 0.05 0.15000000000000002 -2.5 2.5 0.25
+0.2 0 0.15000000000000002 0.25 -2.5 2.5 0.125
+0.3 0 0.25 0.35 -2.5 2.5 0
+0.4 0 0.35 0.45000000000000007 -2.5 2.5 0
+0 5 -0.05 0.05 2.5 7.5 0.625
+0.1 5 0.05 0.15000000000000002 2.5 7.5 0.625
+0.2 5 0.15000000000000002 0.25 2.5 7.5 0.125
+0.3 5 0.25 0.35 2.5 7.5 0
+0.4 5 0.35 0.45000000000000007 2.5 7.5 0
+0 10 -0.05 0.05 7.5 12.5 0.875
+0.1 10 0.05 0.15000000000000002 7.5 12.5 0.75
+0.2 10 0.15000000000000002 0.25 7.5 12.5 0.375
+0.3 10 0.25 0.35 7.5 12.5 0
+0.4 10 0.35 0.45000000000000007 7.5 12.5 0
+EOD
+# boundary, row value, lowest cell with all trials stabilized (rows with one)
+$boundary << EOD
+EOD
+plot $cells using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette notitle
