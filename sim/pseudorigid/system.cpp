@@ -32,10 +32,10 @@ MechanismSystem::MechanismSystem(const Mechanism& m, std::unique_ptr<const Mecha
       fit_x_(m.bodies.size()),
       fit_frame_(m.bodies.size()),
       fit_valid_(m.bodies.size(), false),
+      rigid_(m.bodies.size()),
       frames_(m.bodies.size()),
       dframes_(m.bodies.size()),
       force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))),
-      rigid_(m.bodies.size()),
       torque_(m.bodies.size(), Vector3d::Zero()) {
   if (in_->rest_length.size() != m.connections.size() ||
       in_->surfaces.size() != m.surfaces.size()) {
@@ -264,11 +264,11 @@ bool MechanismSystem::surface_gap(size_t si, const NodeRef& n, const ode::Vec& y
 }
 
 MechanismSystem::SurfaceEval MechanismSystem::eval_surface(size_t si, const NodeRef& n,
-                                                           const ode::Vec& y) const {
+                                                           const ode::Vec& y, ForceSet set) const {
   const Surface& s = m_.surfaces[si];
   SurfaceEval e;
   // The velocity enters only the damper and the friction.
-  const bool moving = !conservative_ && (s.damping != 0.0 || s.friction != 0.0);
+  const bool moving = set == ForceSet::kAll && (s.damping != 0.0 || s.friction != 0.0);
   if (moving) {
     const Vector3d vp = s.body >= 0 && s.damping != 0.0
                             ? node_velocity(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y)
@@ -318,6 +318,7 @@ bool attached_projection(const Surface& s, const SurfaceInputs& in, const Vector
 }  // namespace
 
 void MechanismSystem::attached_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
+                                              ForceSet set,
                                               std::vector<std::pair<int, Vector3d>>& out,
                                               const BodyFrame* known_frame,
                                               const std::array<Matrix3d, 4>* known_omega) const {
@@ -330,8 +331,9 @@ void MechanismSystem::attached_surface_forces(size_t si, const NodeRef& n, const
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
   const Vector3d dir = rot * in.direction;
   const Vector3d r = node_position(n, y) - node_position(g, y);
-  const Vector3d v =
-      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
+  const Vector3d v = set == ForceSet::kConservative
+                         ? Vector3d::Zero()
+                         : Vector3d(node_velocity(n, y) - node_velocity(g, y));
   Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the direction [N m]
   if (!attached_projection(s, in, dir, r, proj, tau)) return;
@@ -366,7 +368,7 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
     const Surface& s = m_.surfaces[si];
     if (s.body != b) continue;
     for (const NodeRef& n : held_nodes(si)) {
-      if (!eval_surface(si, n, y).active) continue;
+      if (!eval_surface(si, n, y, ForceSet::kAll).active) continue;
       pairs.emplace_back(si, n);
       damped = damped || s.damping > 0.0;
     }
@@ -406,7 +408,8 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
   // Unperturbed forces per pair.
   std::vector<std::vector<std::pair<int, Vector3d>>> base(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
-    attached_surface_forces(pairs[k].first, pairs[k].second, y, base[k], &frame0, &omega0);
+    attached_surface_forces(pairs[k].first, pairs[k].second, y, ForceSet::kAll, base[k], &frame0,
+                            &omega0);
   }
   // Momenta enter only through the dampers: without one, position columns suffice.
   const int columns = damped ? 6 : 3;
@@ -431,7 +434,8 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
       for (size_t k = 0; k < pairs.size(); ++k) {
         if (!own && !moves_with(pairs[k].second, mass)) continue;
         fp.clear();
-        attached_surface_forces(pairs[k].first, pairs[k].second, yp, fp, &frame, &omega);
+        attached_surface_forces(pairs[k].first, pairs[k].second, yp, ForceSet::kAll, fp, &frame,
+                                &omega);
         for (const auto& [t, f] : fp) diff[t] += f;
         for (const auto& [t, f] : base[k]) diff[t] -= f;
       }
@@ -447,6 +451,10 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
 }
 
 void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
+  evaluate(ForceSet::kAll, y, dydt);
+}
+
+void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) const {
   // Body-attached surfaces need each body's attitude derivative: once per body here, not
   // once per constrained node.
   if (rhs_needs_frames_) update_frames(y, has_attached_surfaces_);
@@ -457,7 +465,7 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    const Vector3d v = conservative_ && c.kind != ConnectionClass::kActuator
+    const Vector3d v = set == ForceSet::kConservative && c.kind != ConnectionClass::kActuator
                            ? Vector3d::Zero()
                            : Vector3d(node_velocity(c.a, y) - node_velocity(c.b, y));
     const ConnectionForce cf =
@@ -471,16 +479,16 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
     const Surface& s = m_.surfaces[si];
     for (const NodeRef& n : held_nodes(si)) {
       if (s.body < 0) {
-        const SurfaceEval e = eval_surface(si, n, y);
+        const SurfaceEval e = eval_surface(si, n, y, set);
         if (e.active) apply(n, e.force);
         continue;
       }
       if (rot_[s.body] >= 0) {
-        rigid_surface_forces(si, n, y);
+        rigid_surface_forces(si, n, y, set);
         continue;
       }
       attached_.clear();  // (an inactive plane adds nothing)
-      attached_surface_forces(si, n, y, attached_, &frames_[s.body], &dframes_[s.body]);
+      attached_surface_forces(si, n, y, set, attached_, &frames_[s.body], &dframes_[s.body]);
       for (const auto& [mass, f] : attached_) force_.segment<3>(3 * mass) += f;
     }
   }
@@ -537,15 +545,17 @@ bool MechanismSystem::rigid_node(const NodeRef& n) const {
   return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
 }
 
-void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y) const {
+void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
+                                           ForceSet set) const {
   const Surface& s = m_.surfaces[si];
   const SurfaceInputs& in = in_->surfaces[si];
   const Matrix3d& rot = frames_[s.body].rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
   const Vector3d dir = rot * in.direction;
   const Vector3d r = node_position(n, y) - node_position(g, y);
-  const Vector3d v =
-      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
+  const Vector3d v = set == ForceSet::kConservative
+                         ? Vector3d::Zero()
+                         : Vector3d(node_velocity(n, y) - node_velocity(g, y));
   Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the turning direction [N m]
   if (!attached_projection(s, in, dir, r, proj, tau)) return;
@@ -579,10 +589,8 @@ void MechanismSystem::drift(double h, ode::Vec& y) const {
   }
 }
 
-void MechanismSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
-  conservative_ = true;
-  rhs(t, y, dydt);
-  conservative_ = false;
+void MechanismSystem::conservative_rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
+  evaluate(ForceSet::kConservative, y, dydt);
 }
 
 double MechanismSystem::inverse_mass(const NodeRef& n) const {
@@ -951,7 +959,7 @@ void MechanismSystem::jacobian(double t, const ode::Vec& y,
     const Surface& s = m_.surfaces[si];
     if (s.body >= 0) continue;  // body-attached: attached_surfaces_jacobian, below
     for (const NodeRef& n : held_nodes(si)) {
-      const SurfaceEval e = eval_surface(si, n, y);
+      const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
       if (!e.active) continue;
       Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
       if (e.normal > 0.0) {
@@ -1098,7 +1106,7 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   for (size_t i = 0; i < m_.surfaces.size(); ++i) {
     const Surface& s = m_.surfaces[i];
     for (const NodeRef& n : held_nodes(i)) {
-      const SurfaceEval ev = eval_surface(i, n, y);
+      const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
       if (!ev.active) continue;
       e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
       mon.max_penetration = std::max(mon.max_penetration, ev.penetration);
@@ -1131,7 +1139,7 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
   for (size_t si = 0; si < m_.surfaces.size(); ++si) {
     const Surface& s = m_.surfaces[si];
     for (const NodeRef& n : held_nodes(si)) {
-      const SurfaceEval e = eval_surface(si, n, y);
+      const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
       if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v) - e.friction.dot(e.v);
     }
   }
@@ -1181,7 +1189,7 @@ MechanismSystem::Contact MechanismSystem::contact(int surface, const NodeRef& n,
   const Surface& s = m_.surfaces[static_cast<size_t>(surface)];
   Contact c;
   if (s.body >= 0) return c;  // grounded planes only
-  const SurfaceEval e = eval_surface(static_cast<size_t>(surface), n, y);
+  const SurfaceEval e = eval_surface(static_cast<size_t>(surface), n, y, ForceSet::kAll);
   if (!e.active) return c;
   c.normal = std::max(0.0, e.dir.dot(e.force - e.friction));
   c.friction = e.friction;

@@ -109,6 +109,9 @@ class RobotSystem final : public ode::OdeSystem {
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
   int rotation_ = -1;  ///< rigid body: its rotation states in y
+  // Scratch, written before it is read within one call (no state carried between calls): the
+  // actuator forces and their differences, the feedback's leg forces, grounded legs,
+  // directions, system and solution, and the Jacobian's perturbed state and triplets.
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
   mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)
