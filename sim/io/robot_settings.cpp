@@ -79,6 +79,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
+  p.energy_blowup_factor = r.positive_or("energy_blowup_factor", p.energy_blowup_factor);
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -137,6 +138,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"level_feet", p.level_feet},
             {"hop_trim_gain", p.hop_trim_gain},
             {"hop_trim_max", p.hop_trim_max},
+            {"energy_blowup_factor", p.energy_blowup_factor},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},

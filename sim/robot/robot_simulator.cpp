@@ -723,7 +723,7 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
   mon.energy_scale =
       total_mass_ * g_ * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
   balance0_ = msys_.energies(mech.initial_state()).total();
-  blowup_ = 10.0 * mon.energy_scale;
+  blowup_ = mech.simulation.energy_blowup_factor * mon.energy_scale;
   run_.balance0 = balance0_;
   run_.blowup = blowup_;
   solver_ = solver_options(prs_, mon.energy_scale);
@@ -781,10 +781,15 @@ bool RobotRun::energy_ok(double t, const ode::Vec& y, const ode::Stepper& steppe
     t_blowup = run_.blowup_time;
   }
   if (!y.allFinite() || !std::isfinite(balance) || !(drift <= blowup_)) {
+    // (The factor is named when the scene changed it from its default.)
+    const double factor = model_.mechanism.simulation.energy_blowup_factor;
+    const std::string set_factor = factor != scene::PseudoRigid{}.energy_blowup_factor
+                                       ? ", energy_blowup_factor " + run::fmt(factor)
+                                       : std::string();
     end_run(reduced::RunStatus::kDiverged,
             "energy blow-up at t = " + run::fmt(t_blowup) + " s: the balance drifted by " +
-                run::fmt(drift) + " J (scale " + run::fmt(result.monitors.energy_scale) +
-                " J); stiffness too high for the solver or the step too large" +
+                run::fmt(drift) + " J (scale " + run::fmt(result.monitors.energy_scale) + " J" +
+                set_factor + "); stiffness too high for the solver or the step too large" +
                 step_note(stepper));
     return false;
   }

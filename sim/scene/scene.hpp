@@ -158,6 +158,10 @@ struct PseudoRigid {
   /// [-1, hop_trim_max] x sqrt(2 g h). Legs whose dampers take much of the stance
   /// energy need more than one sqrt(2 g h) [-].
   double hop_trim_max = 1.0;
+  /// Energy blow-up: a run whose energy balance drifts by more than this times the run's
+  /// energy scale ends diverged. The mechanisms' setting (pseudorigid::SimulationOptions::
+  /// energy_blowup_factor), with its default [-].
+  double energy_blowup_factor = 10.0;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
