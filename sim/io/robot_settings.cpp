@@ -85,6 +85,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
                          {"impulse", "energy"}) == "energy"
                  ? Thrust::kEnergy
                  : Thrust::kImpulse;
+  p.energy_blowup_factor = r.positive_or("energy_blowup_factor", p.energy_blowup_factor);
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
@@ -145,6 +146,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"hop_trim_max", p.hop_trim_max},
             {"thrust", p.thrust == Thrust::kEnergy ? "energy" : "impulse"},
             {"position_trim_gain", p.position_trim_gain},
+            {"energy_blowup_factor", p.energy_blowup_factor},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},
               {"rtol", so.rtol},

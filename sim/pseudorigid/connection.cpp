@@ -4,7 +4,7 @@
 
 namespace pronk::pseudorigid {
 
-ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
+ConnectionForce connection_force(const Connection& c, double rest_length, const Eigen::Vector3d& d,
                                  const Eigen::Vector3d& v, double epsilon, bool derivatives) {
   ConnectionForce out;
   const Eigen::Matrix3d eye = Eigen::Matrix3d::Identity();
@@ -21,12 +21,12 @@ ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
   Eigen::Vector3d spring = Eigen::Vector3d::Zero();
   Eigen::Matrix3d spring_dx = Eigen::Matrix3d::Zero();
   if (c.stiffness != 0.0) {
-    if (c.rest_length == 0.0) {
+    if (rest_length == 0.0) {
       spring = -c.stiffness * d;
       if (derivatives) spring_dx = -c.stiffness * eye;
     } else if (has_dir) {
-      spring = -c.stiffness * (l - c.rest_length) * e;
-      if (derivatives) spring_dx = -c.stiffness * (eet + ((l - c.rest_length) / l) * perp);
+      spring = -c.stiffness * (l - rest_length) * e;
+      if (derivatives) spring_dx = -c.stiffness * (eet + ((l - rest_length) / l) * perp);
     } else {
       out.zero_length = true;
     }
@@ -82,9 +82,9 @@ ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
   return out;
 }
 
-double connection_energy(const Connection& c, const Eigen::Vector3d& d) {
+double connection_energy(const Connection& c, double rest_length, const Eigen::Vector3d& d) {
   if (c.kind == ConnectionClass::kActuator || c.stiffness == 0.0) return 0.0;
-  const double stretch = c.rest_length == 0.0 ? d.norm() : d.norm() - c.rest_length;
+  const double stretch = rest_length == 0.0 ? d.norm() : d.norm() - rest_length;
   return 0.5 * c.stiffness * stretch * stretch;
 }
 

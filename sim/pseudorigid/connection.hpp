@@ -27,7 +27,7 @@ struct Connection {
   NodeRef a, b;
   ConnectionClass kind = ConnectionClass::kOther;
   double stiffness = 0.0;    ///< k [N/m]
-  double rest_length = 0.0;  ///< l0 [m]
+  double rest_length = 0.0;  ///< l0 [m] (a run may change it: MechanismInputs, inputs.hpp)
   double damping = 0.0;      ///< b, along the connection [N s/m]
   double friction = 0.0;     ///< c, linear in the relative velocity [N s/m]
   double drag = 0.0;         ///< q, quadratic [N s^2/m^2]
@@ -43,12 +43,13 @@ struct ConnectionForce {
   bool zero_length = false;                               ///< the zero-length rule dropped a term
 };
 
-/// Evaluates the connection law at relative position d [m] and velocity v [m/s];
-/// without `derivatives` d_dx and d_dv are left unset (not exact; the RHS does not need them).
-ConnectionForce connection_force(const Connection& c, const Eigen::Vector3d& d,
+/// Evaluates the connection law with rest length l0 = rest_length [m] (the run's, in place of
+/// c.rest_length) at relative position d [m] and velocity v [m/s]; without `derivatives` d_dx
+/// and d_dv are left unset (not exact; the RHS does not need them).
+ConnectionForce connection_force(const Connection& c, double rest_length, const Eigen::Vector3d& d,
                                  const Eigen::Vector3d& v, double epsilon, bool derivatives = true);
 
-/// Stored energy of the spring [J] (0 for actuators).
-double connection_energy(const Connection& c, const Eigen::Vector3d& d);
+/// Stored energy of the spring with rest length rest_length [m] [J] (0 for actuators).
+double connection_energy(const Connection& c, double rest_length, const Eigen::Vector3d& d);
 
 }  // namespace pronk::pseudorigid

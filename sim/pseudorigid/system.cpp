@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "sim/ode/difference_jacobian.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
@@ -18,15 +19,28 @@ Vector3d seg(const ode::Vec& y, int i) { return y.segment<3>(i); }
 }  // namespace
 
 MechanismSystem::MechanismSystem(const Mechanism& m)
+    : MechanismSystem(m, std::make_unique<const MechanismInputs>(m), nullptr) {}
+
+MechanismSystem::MechanismSystem(const Mechanism& m, const MechanismInputs& inputs)
+    : MechanismSystem(m, nullptr, &inputs) {}
+
+MechanismSystem::MechanismSystem(const Mechanism& m, std::unique_ptr<const MechanismInputs> own,
+                                 const MechanismInputs* inputs)
     : m_(m),
+      own_inputs_(std::move(own)),
+      in_(inputs != nullptr ? inputs : own_inputs_.get()),
       fit_x_(m.bodies.size()),
       fit_frame_(m.bodies.size()),
       fit_valid_(m.bodies.size(), false),
+      rigid_(m.bodies.size()),
       frames_(m.bodies.size()),
       dframes_(m.bodies.size()),
       force_(ode::Vec::Zero(3 * static_cast<int>(m.masses.size()))),
-      rigid_(m.bodies.size()),
       torque_(m.bodies.size(), Vector3d::Zero()) {
+  if (in_->rest_length.size() != m.connections.size() ||
+      in_->surfaces.size() != m.surfaces.size()) {
+    throw std::invalid_argument("MechanismSystem: inputs not sized to the mechanism");
+  }
   for (const Mass& ms : m.masses) inv_mass_.push_back(1.0 / ms.mass);
   for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b) {
     rot_.push_back(m.rotation_state(b));
@@ -67,12 +81,12 @@ namespace {
 
 /// |l - l0| / l0 of a connection with rest length l0 > 0 and separation d; u, when given, is
 /// its stored energy k (l - l0)^2 / 2, from which |l - l0| follows without a second norm.
-double connection_strain(const Connection& c, const Vector3d& d, double u = -1.0) {
+double connection_strain(const Connection& c, double l0, const Vector3d& d, double u = -1.0) {
   if (c.stiffness > 0.0) {
-    if (u < 0.0) u = connection_energy(c, d);
-    return std::sqrt(2.0 * u / c.stiffness) / c.rest_length;
+    if (u < 0.0) u = connection_energy(c, l0, d);
+    return std::sqrt(2.0 * u / c.stiffness) / l0;
   }
-  return std::abs(d.norm() - c.rest_length) / c.rest_length;
+  return std::abs(d.norm() - l0) / l0;
 }
 
 }  // namespace
@@ -221,16 +235,18 @@ void MechanismSystem::apply(const NodeRef& n, const Vector3d& f) const {
   for (int i = 0; i < k; ++i) force_.segment<3>(3 * tr[i].mass) += tr[i].t * f;
 }
 
-bool MechanismSystem::surface_gap(const Surface& s, const NodeRef& n, const ode::Vec& y,
+bool MechanismSystem::surface_gap(size_t si, const NodeRef& n, const ode::Vec& y,
                                   SurfaceEval& e) const {
+  const Surface& s = m_.surfaces[si];
+  const SurfaceInputs& in = in_->surfaces[si];
   const Vector3d p =
       s.body >= 0 ? node_position(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y) : s.point;
-  e.dir = s.body >= 0 ? Vector3d(frames_[s.body].rotation * s.direction) : s.direction;
+  e.dir = s.body >= 0 ? Vector3d(frames_[s.body].rotation * in.direction) : in.direction;
   e.r = node_position(n, y) - p;
-  switch (s.type) {
+  switch (in.type) {
     case SurfaceType::kPlane: {
       const double h = e.dir.dot(e.r);
-      if (h >= 0.0 && !s.bilateral) return false;
+      if (h >= 0.0 && !in.bilateral) return false;
       e.proj = e.dir * e.dir.transpose();
       e.penetration = std::abs(h);
       break;
@@ -247,18 +263,19 @@ bool MechanismSystem::surface_gap(const Surface& s, const NodeRef& n, const ode:
   return true;
 }
 
-MechanismSystem::SurfaceEval MechanismSystem::eval_surface(const Surface& s, const NodeRef& n,
-                                                           const ode::Vec& y) const {
+MechanismSystem::SurfaceEval MechanismSystem::eval_surface(size_t si, const NodeRef& n,
+                                                           const ode::Vec& y, ForceSet set) const {
+  const Surface& s = m_.surfaces[si];
   SurfaceEval e;
   // The velocity enters only the damper and the friction.
-  const bool moving = !conservative_ && (s.damping != 0.0 || s.friction != 0.0);
+  const bool moving = set == ForceSet::kAll && (s.damping != 0.0 || s.friction != 0.0);
   if (moving) {
     const Vector3d vp = s.body >= 0 && s.damping != 0.0
                             ? node_velocity(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y)
                             : Vector3d::Zero();
     e.v = node_velocity(n, y) - vp;
   }
-  if (!surface_gap(s, n, y, e)) return e;
+  if (!surface_gap(si, n, y, e)) return e;
   e.active = true;
   e.force = -e.proj * (s.stiffness * e.r + s.damping * e.v);
   if (s.friction > 0.0) {  // grounded planes only (the loader enforces it)
@@ -276,14 +293,15 @@ namespace {
 
 /// A body-attached surface's projection P onto its constrained components and its
 /// direction's torque tau = -dU/dtheta [N m] for a node at r from the surface's ghost point
-/// (dir: the world direction); false when a one-sided plane is not touched.
-bool attached_projection(const Surface& s, const Vector3d& dir, const Vector3d& r, Matrix3d& proj,
-                         Vector3d& tau) {
+/// (in: its run-time inputs; dir: the world direction); false when a one-sided plane is not
+/// touched.
+bool attached_projection(const Surface& s, const SurfaceInputs& in, const Vector3d& dir,
+                         const Vector3d& r, Matrix3d& proj, Vector3d& tau) {
   proj = Matrix3d::Identity();
   tau = Vector3d::Zero();
-  switch (s.type) {
+  switch (in.type) {
     case SurfaceType::kPlane:
-      if (dir.dot(r) >= 0.0 && !s.bilateral) return false;
+      if (dir.dot(r) >= 0.0 && !in.bilateral) return false;
       proj = dir * dir.transpose();
       tau = -s.stiffness * dir.dot(r) * dir.cross(r);
       break;
@@ -299,22 +317,26 @@ bool attached_projection(const Surface& s, const Vector3d& dir, const Vector3d& 
 
 }  // namespace
 
-void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
+void MechanismSystem::attached_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
+                                              ForceSet set,
                                               std::vector<std::pair<int, Vector3d>>& out,
                                               const BodyFrame* known_frame,
                                               const std::array<Matrix3d, 4>* known_omega) const {
+  const Surface& s = m_.surfaces[si];
+  const SurfaceInputs& in = in_->surfaces[si];
   const Body& body = m_.bodies[s.body];
   const GhostPoint& gp = m_.ghost_points[s.ghost];
   const BodyFrame& frame = known_frame != nullptr ? *known_frame : fitted_frame(s.body, y);
   const Matrix3d& rot = frame.rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
-  const Vector3d dir = rot * s.direction;
+  const Vector3d dir = rot * in.direction;
   const Vector3d r = node_position(n, y) - node_position(g, y);
-  const Vector3d v =
-      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
+  const Vector3d v = set == ForceSet::kConservative
+                         ? Vector3d::Zero()
+                         : Vector3d(node_velocity(n, y) - node_velocity(g, y));
   Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the direction [N m]
-  if (!attached_projection(s, dir, r, proj, tau)) return;
+  if (!attached_projection(s, in, dir, r, proj, tau)) return;
   const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
   if (n.kind == NodeRef::Kind::kMass) {
     out.emplace_back(n.index, force);
@@ -325,14 +347,14 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
   }
   std::array<Matrix3d, 4> computed;
   const std::array<Matrix3d, 4>* omega = known_omega;
-  if (s.type != SurfaceType::kPoint && omega == nullptr) {
+  if (in.type != SurfaceType::kPoint && omega == nullptr) {
     computed = attitude_derivative(frame, body.local);
     omega = &computed;
   }
   const Vector3d tau_body = rot.transpose() * tau;
   for (int i = 0; i < 4; ++i) {
     Vector3d f = -gp.weights[i] * force;
-    if (s.type != SurfaceType::kPoint) f += (*omega)[i].transpose() * tau_body;
+    if (in.type != SurfaceType::kPoint) f += (*omega)[i].transpose() * tau_body;
     out.emplace_back(body.first_mass + i, f);
   }
 }
@@ -340,13 +362,14 @@ void MechanismSystem::attached_surface_forces(const Surface& s, const NodeRef& n
 void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const {
   // The active (surface, node) pairs on body b, and the masses they involve: the
   // body's four (their motion turns the surfaces) and the constrained nodes'.
-  std::vector<std::pair<const Surface*, NodeRef>> pairs;
+  std::vector<std::pair<size_t, NodeRef>> pairs;  // (surface, node)
   bool damped = false;
-  for (const Surface& s : m_.surfaces) {
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
     if (s.body != b) continue;
-    for (const NodeRef& n : s.nodes) {
-      if (!eval_surface(s, n, y).active) continue;
-      pairs.emplace_back(&s, n);
+    for (const NodeRef& n : held_nodes(si)) {
+      if (!eval_surface(si, n, y, ForceSet::kAll).active) continue;
+      pairs.emplace_back(si, n);
       damped = damped || s.damping > 0.0;
     }
   }
@@ -385,7 +408,8 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
   // Unperturbed forces per pair.
   std::vector<std::vector<std::pair<int, Vector3d>>> base(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
-    attached_surface_forces(*pairs[k].first, pairs[k].second, y, base[k], &frame0, &omega0);
+    attached_surface_forces(pairs[k].first, pairs[k].second, y, ForceSet::kAll, base[k], &frame0,
+                            &omega0);
   }
   // Momenta enter only through the dampers: without one, position columns suffice.
   const int columns = damped ? 6 : 3;
@@ -410,7 +434,8 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
       for (size_t k = 0; k < pairs.size(); ++k) {
         if (!own && !moves_with(pairs[k].second, mass)) continue;
         fp.clear();
-        attached_surface_forces(*pairs[k].first, pairs[k].second, yp, fp, &frame, &omega);
+        attached_surface_forces(pairs[k].first, pairs[k].second, yp, ForceSet::kAll, fp, &frame,
+                                &omega);
         for (const auto& [t, f] : fp) diff[t] += f;
         for (const auto& [t, f] : base[k]) diff[t] -= f;
       }
@@ -426,6 +451,10 @@ void MechanismSystem::attached_surfaces_jacobian(int b, const ode::Vec& y) const
 }
 
 void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
+  evaluate(ForceSet::kAll, y, dydt);
+}
+
+void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) const {
   // Body-attached surfaces need each body's attitude derivative: once per body here, not
   // once per constrained node.
   if (rhs_needs_frames_) update_frames(y, has_attached_surfaces_);
@@ -433,30 +462,33 @@ void MechanismSystem::rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const
   for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
   if (any_rigid_) std::fill(torque_.begin(), torque_.end(), Vector3d::Zero());
   bool zero_length = false;
-  for (const Connection& c : m_.connections) {
+  for (size_t i = 0; i < m_.connections.size(); ++i) {
+    const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    const Vector3d v = conservative_ && c.kind != ConnectionClass::kActuator
+    const Vector3d v = set == ForceSet::kConservative && c.kind != ConnectionClass::kActuator
                            ? Vector3d::Zero()
                            : Vector3d(node_velocity(c.a, y) - node_velocity(c.b, y));
-    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon, false);
+    const ConnectionForce cf =
+        connection_force(c, in_->rest_length[i], d, v, m_.simulation.zero_length_epsilon, false);
     zero_length = zero_length || cf.zero_length;
     apply(c.a, cf.force);
     apply(c.b, -cf.force);
   }
   if (zero_length) ++zero_length_;
-  for (const Surface& s : m_.surfaces) {
-    for (const NodeRef& n : s.nodes) {
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
+    for (const NodeRef& n : held_nodes(si)) {
       if (s.body < 0) {
-        const SurfaceEval e = eval_surface(s, n, y);
+        const SurfaceEval e = eval_surface(si, n, y, set);
         if (e.active) apply(n, e.force);
         continue;
       }
       if (rot_[s.body] >= 0) {
-        rigid_surface_forces(s, n, y);
+        rigid_surface_forces(si, n, y, set);
         continue;
       }
       attached_.clear();  // (an inactive plane adds nothing)
-      attached_surface_forces(s, n, y, attached_, &frames_[s.body], &dframes_[s.body]);
+      attached_surface_forces(si, n, y, set, attached_, &frames_[s.body], &dframes_[s.body]);
       for (const auto& [mass, f] : attached_) force_.segment<3>(3 * mass) += f;
     }
   }
@@ -513,17 +545,20 @@ bool MechanismSystem::rigid_node(const NodeRef& n) const {
   return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
 }
 
-void MechanismSystem::rigid_surface_forces(const Surface& s, const NodeRef& n,
-                                           const ode::Vec& y) const {
+void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
+                                           ForceSet set) const {
+  const Surface& s = m_.surfaces[si];
+  const SurfaceInputs& in = in_->surfaces[si];
   const Matrix3d& rot = frames_[s.body].rotation;
   const NodeRef g{NodeRef::Kind::kGhost, s.ghost};
-  const Vector3d dir = rot * s.direction;
+  const Vector3d dir = rot * in.direction;
   const Vector3d r = node_position(n, y) - node_position(g, y);
-  const Vector3d v =
-      conservative_ ? Vector3d::Zero() : Vector3d(node_velocity(n, y) - node_velocity(g, y));
+  const Vector3d v = set == ForceSet::kConservative
+                         ? Vector3d::Zero()
+                         : Vector3d(node_velocity(n, y) - node_velocity(g, y));
   Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the turning direction [N m]
-  if (!attached_projection(s, dir, r, proj, tau)) return;
+  if (!attached_projection(s, in, dir, r, proj, tau)) return;
   const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
   apply(n, force);
   apply(g, -force);
@@ -554,10 +589,8 @@ void MechanismSystem::drift(double h, ode::Vec& y) const {
   }
 }
 
-void MechanismSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
-  conservative_ = true;
-  rhs(t, y, dydt);
-  conservative_ = false;
+void MechanismSystem::conservative_rhs(double /*t*/, const ode::Vec& y, ode::Vec& dydt) const {
+  evaluate(ForceSet::kConservative, y, dydt);
 }
 
 double MechanismSystem::inverse_mass(const NodeRef& n) const {
@@ -686,7 +719,9 @@ void MechanismSystem::dissipate_connections(double h, ode::Vec& y) const {
 }
 
 void MechanismSystem::dissipate_surfaces(double h, ode::Vec& y) const {
-  for (const Surface& s : m_.surfaces) {
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
+    const SurfaceInputs& in = in_->surfaces[si];
     if (s.damping == 0.0 && s.friction == 0.0) continue;
     Matrix3d rot = Matrix3d::Identity();
     NodeRef g{NodeRef::Kind::kAnchor, -1};
@@ -696,13 +731,13 @@ void MechanismSystem::dissipate_surfaces(double h, ode::Vec& y) const {
       g = NodeRef{NodeRef::Kind::kGhost, s.ghost};
       wg = inverse_mass(g);
     }
-    const Vector3d dir = rot * s.direction;
+    const Vector3d dir = rot * in.direction;
     const Vector3d p = s.body >= 0 ? node_position(g, y) : s.point;
-    for (const NodeRef& n : s.nodes) {
+    for (const NodeRef& n : held_nodes(si)) {
       const Vector3d r = node_position(n, y) - p;
-      const bool plane = s.type == SurfaceType::kPlane;
+      const bool plane = in.type == SurfaceType::kPlane;
       const double height = dir.dot(r);
-      if (plane && height >= 0.0 && !s.bilateral) continue;
+      if (plane && height >= 0.0 && !in.bilateral) continue;
       double w = inverse_mass(n) + wg;
       if (!(w > 0.0)) continue;
       Vector3d u = node_velocity(n, y);
@@ -718,15 +753,15 @@ void MechanismSystem::dissipate_surfaces(double h, ode::Vec& y) const {
       Vector3d j = Vector3d::Zero();
       double un = dir.dot(u);
       if (rigid) {
-        w = along(plane                          ? dir
-                  : s.type == SurfaceType::kLine ? unit_or_zero(u - un * dir)
-                                                 : unit_or_zero(u));
+        w = along(plane                           ? dir
+                  : in.type == SurfaceType::kLine ? unit_or_zero(u - un * dir)
+                                                  : unit_or_zero(u));
       }
       const double damp = h * s.damping / (1.0 + h * s.damping * w);
       if (plane) {
         j = (-damp * un) * dir;
         un -= damp * w * un;
-      } else if (s.type == SurfaceType::kLine) {
+      } else if (in.type == SurfaceType::kLine) {
         j = -damp * (u - un * dir);
       } else {
         j = -damp * u;
@@ -770,13 +805,15 @@ double MechanismSystem::booked_dissipation(const ode::Vec& y_ref, const ode::Vec
 }
 
 void MechanismSystem::correct_step(const ode::Vec& y0, ode::Vec& y1) const {
-  for (const Surface& s : m_.surfaces) {
-    if (s.body >= 0 || s.type != SurfaceType::kPlane || s.bilateral) continue;
-    for (const NodeRef& n : s.nodes) {
-      const double z0 = s.direction.dot(node_position(n, y0) - s.point);
-      const double z1 = s.direction.dot(node_position(n, y1) - s.point);
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
+    const SurfaceInputs& in = in_->surfaces[si];
+    if (s.body >= 0 || in.type != SurfaceType::kPlane || in.bilateral) continue;
+    for (const NodeRef& n : held_nodes(si)) {
+      const double z0 = in.direction.dot(node_position(n, y0) - s.point);
+      const double z1 = in.direction.dot(node_position(n, y1) - s.point);
       if ((z0 < 0.0) == (z1 < 0.0)) continue;  // no kink crossed: exact already
-      const double w = inverse_mass_along(n, y1, s.direction);
+      const double w = inverse_mass_along(n, y1, in.direction);
       if (!(w > 0.0)) continue;
       // Energy the kicks' trapezoidal contact work gave beyond the exact one [J].
       const double f0 = s.stiffness * std::max(0.0, -z0), f1 = s.stiffness * std::max(0.0, -z1);
@@ -784,10 +821,10 @@ void MechanismSystem::correct_step(const ode::Vec& y0, ode::Vec& y1) const {
       const double u1 = 0.5 * s.stiffness * std::min(0.0, z1) * std::min(0.0, z1);
       const double excess = 0.5 * (f0 + f1) * (z1 - z0) + (u1 - u0);
       // Impulse J along the normal with J u + w J^2 / 2 = -excess (u: normal velocity).
-      const double u = s.direction.dot(node_velocity(n, y1));
+      const double u = in.direction.dot(node_velocity(n, y1));
       const double disc = u * u - 2.0 * w * excess;
       const double j = disc >= 0.0 ? (-u + std::copysign(std::sqrt(disc), u)) / w : -u / w;
-      add_impulse(n, j * s.direction, y1);
+      add_impulse(n, j * in.direction, y1);
     }
   }
 }
@@ -905,10 +942,12 @@ void MechanismSystem::jacobian(double t, const ode::Vec& y,
   for (int j = 0; j < nm; ++j) {
     for (int i = 0; i < 3; ++i) triplets_.emplace_back(6 * j + i, 6 * j + 3 + i, inv_mass_[j]);
   }
-  for (const Connection& c : m_.connections) {
+  for (size_t i = 0; i < m_.connections.size(); ++i) {
+    const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
     const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
-    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon);
+    const ConnectionForce cf =
+        connection_force(c, in_->rest_length[i], d, v, m_.simulation.zero_length_epsilon);
     jac_force(c.a, c.a, cf.d_dx, cf.d_dv);
     jac_force(c.a, c.b, -cf.d_dx, -cf.d_dv);
     jac_force(c.b, c.a, -cf.d_dx, -cf.d_dv);
@@ -916,10 +955,11 @@ void MechanismSystem::jacobian(double t, const ode::Vec& y,
     jac_transfer(c.a, cf.force);
     jac_transfer(c.b, -cf.force);
   }
-  for (const Surface& s : m_.surfaces) {
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
     if (s.body >= 0) continue;  // body-attached: attached_surfaces_jacobian, below
-    for (const NodeRef& n : s.nodes) {
-      const SurfaceEval e = eval_surface(s, n, y);
+    for (const NodeRef& n : held_nodes(si)) {
+      const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
       if (!e.active) continue;
       Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
       if (e.normal > 0.0) {
@@ -1045,14 +1085,15 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     e.kinetic += 0.5 * l.dot(rigid_inverse_inertia(m_.bodies[b], frames_[b].rotation) * l);
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
-  for (const Connection& c : m_.connections) {
+  for (size_t i = 0; i < m_.connections.size(); ++i) {
+    const Connection& c = m_.connections[i];
+    const double l0 = in_->rest_length[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    const double u = connection_energy(c, d);
+    const double u = connection_energy(c, l0, d);
     switch (c.kind) {
       case ConnectionClass::kInternal:
         e.internal += u;
-        if (c.rest_length > 0.0)
-          mon.max_strain = std::max(mon.max_strain, connection_strain(c, d, u));
+        if (l0 > 0.0) mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, d, u));
         break;
       case ConnectionClass::kLeg:
         e.leg += u;
@@ -1064,8 +1105,8 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   }
   for (size_t i = 0; i < m_.surfaces.size(); ++i) {
     const Surface& s = m_.surfaces[i];
-    for (const NodeRef& n : s.nodes) {
-      const SurfaceEval ev = eval_surface(s, n, y);
+    for (const NodeRef& n : held_nodes(i)) {
+      const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
       if (!ev.active) continue;
       e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
       mon.max_penetration = std::max(mon.max_penetration, ev.penetration);
@@ -1086,16 +1127,19 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
   PowerFlows p;
   if (!has_power_flows_) return p;
   if (rhs_needs_frames_) update_frames(y, false);
-  for (const Connection& c : m_.connections) {
+  for (size_t i = 0; i < m_.connections.size(); ++i) {
+    const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
     const Vector3d v = node_velocity(c.a, y) - node_velocity(c.b, y);
-    const ConnectionForce cf = connection_force(c, d, v, m_.simulation.zero_length_epsilon, false);
+    const ConnectionForce cf =
+        connection_force(c, in_->rest_length[i], d, v, m_.simulation.zero_length_epsilon, false);
     p.dissipated -= cf.dissipative.dot(v);
     if (c.kind == ConnectionClass::kActuator) p.actuator += cf.force.dot(v);
   }
-  for (const Surface& s : m_.surfaces) {
-    for (const NodeRef& n : s.nodes) {
-      const SurfaceEval e = eval_surface(s, n, y);
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    const Surface& s = m_.surfaces[si];
+    for (const NodeRef& n : held_nodes(si)) {
+      const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
       if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v) - e.friction.dot(e.v);
     }
   }
@@ -1117,15 +1161,17 @@ StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
   // observe()'s monitors alone (the same expressions): no energies, no surface forces.
   if (rhs_needs_frames_) update_frames(y, false);
   StateMonitors mon;
-  for (const Connection& c : m_.connections) {
-    if (c.kind != ConnectionClass::kInternal || !(c.rest_length > 0.0)) continue;
+  for (size_t i = 0; i < m_.connections.size(); ++i) {
+    const Connection& c = m_.connections[i];
+    const double l0 = in_->rest_length[i];
+    if (c.kind != ConnectionClass::kInternal || !(l0 > 0.0)) continue;
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    mon.max_strain = std::max(mon.max_strain, connection_strain(c, d));
+    mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, d));
   }
   SurfaceEval e;
-  for (const Surface& s : m_.surfaces) {
-    for (const NodeRef& n : s.nodes) {
-      if (surface_gap(s, n, y, e))
+  for (size_t si = 0; si < m_.surfaces.size(); ++si) {
+    for (const NodeRef& n : held_nodes(si)) {
+      if (surface_gap(si, n, y, e))
         mon.max_penetration = std::max(mon.max_penetration, e.penetration);
     }
   }
@@ -1143,7 +1189,7 @@ MechanismSystem::Contact MechanismSystem::contact(int surface, const NodeRef& n,
   const Surface& s = m_.surfaces[static_cast<size_t>(surface)];
   Contact c;
   if (s.body >= 0) return c;  // grounded planes only
-  const SurfaceEval e = eval_surface(s, n, y);
+  const SurfaceEval e = eval_surface(static_cast<size_t>(surface), n, y, ForceSet::kAll);
   if (!e.active) return c;
   c.normal = std::max(0.0, e.dir.dot(e.force - e.friction));
   c.friction = e.friction;

@@ -2,10 +2,14 @@
 // (3x3 blocks per connection, surface and force, including the rotation
 // dependence of ghost-point transfer and body-relative directions), the
 // optional body-level error norm, energies and monitors. One object per run
-// (it holds scratch space and counters); the Mechanism it refers to is const.
+// (it holds scratch space, memos and a counter); the Mechanism it refers to is const, and
+// what the run changes as it goes (rest lengths, surfaces) it reads from the run's
+// MechanismInputs (inputs.hpp).
 #pragma once
 
 #include <array>
+#include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -15,6 +19,7 @@
 #include "sim/ode/ode_system.hpp"
 #include "sim/pseudorigid/attitude.hpp"
 #include "sim/pseudorigid/energy.hpp"
+#include "sim/pseudorigid/inputs.hpp"
 #include "sim/pseudorigid/model.hpp"
 
 namespace pronk::pseudorigid {
@@ -27,7 +32,10 @@ struct StateMonitors {
 
 class MechanismSystem final : public ode::OdeSystem {
  public:
+  /// With inputs of its own, as the Mechanism has them (a run that changes none).
   explicit MechanismSystem(const Mechanism& m);
+  /// Reads the run's `inputs` (sized to m; they outlive the system) at every evaluation.
+  MechanismSystem(const Mechanism& m, const MechanismInputs& inputs);
 
   int dimension() const override { return m_.dimension(); }
   void rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
@@ -123,14 +131,30 @@ class MechanismSystem final : public ode::OdeSystem {
 
   /// RHS evaluations in which the zero-length rule fired.
   long zero_length_triggers() const { return zero_length_; }
+  /// The run-time inputs it reads.
+  const MechanismInputs& inputs() const { return *in_; }
 
  private:
+  /// The constructors': the inputs held (own) or, when null, the run's (inputs).
+  MechanismSystem(const Mechanism& m, std::unique_ptr<const MechanismInputs> own,
+                  const MechanismInputs* inputs);
+  /// The forces an evaluation includes: all of them (rhs), or all but the dissipative elements
+  /// (conservative_rhs: the velocities of dampers, friction and drag count as zero).
+  enum class ForceSet { kAll, kConservative };
+  /// rhs() (kAll) and conservative_rhs() (kConservative).
+  void evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) const;
+  /// The nodes surface si holds now: its own, or none (SurfaceInputs::holds).
+  const std::vector<NodeRef>& held_nodes(size_t si) const {
+    return in_->surfaces[si].holds ? m_.surfaces[si].nodes : no_nodes_;
+  }
   /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
   /// node_position and node_velocity of a ghost point or an anchor.
   Eigen::Vector3d point_position(const NodeRef& n, const ode::Vec& y) const;
   Eigen::Vector3d point_velocity(const NodeRef& n, const ode::Vec& y) const;
   struct RigidState {
-    Eigen::Matrix<double, 7, 1> key = Eigen::Matrix<double, 7, 1>::Constant(-1e300);
+    /// (NaN: matches no state, so the first call computes.)
+    Eigen::Matrix<double, 7, 1> key =
+        Eigen::Matrix<double, 7, 1>::Constant(std::numeric_limits<double>::quiet_NaN());
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Identity();  ///< world R I^-1 R^T
     Eigen::Vector3d omega = Eigen::Vector3d::Zero();                ///< world [rad/s]
@@ -155,10 +179,10 @@ class MechanismSystem final : public ode::OdeSystem {
   /// n is a ghost point of a rigid body.
   bool rigid_node(const NodeRef& n) const;
   void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
-  /// Body-attached surface on a rigid body: the force on node n, its reaction at the surface's
-  /// ghost point and the torque of the turning direction (attached_surface_forces) into
-  /// force_ and torque_.
-  void rigid_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  /// Body-attached surface si on a rigid body: the force on node n, its reaction at the
+  /// surface's ghost point and the torque of the turning direction (attached_surface_forces)
+  /// into force_ and torque_.
+  void rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
   /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
   /// rotation states, compared exactly: one RHS reads them for every ghost point).
   const RigidState& rigid_state(int b, const ode::Vec& y) const;
@@ -190,11 +214,11 @@ class MechanismSystem final : public ode::OdeSystem {
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< friction part of force [N]
     double normal = 0.0;  ///< normal force N >= 0 the friction scales with [N]
   };
-  SurfaceEval eval_surface(const Surface& s, const NodeRef& n, const ode::Vec& y) const;
+  SurfaceEval eval_surface(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
   /// The geometry part of eval_surface (dir, r, proj, penetration into e); false when a
   /// one-sided plane is not touched. Needs frames_ current for a body-attached surface.
-  bool surface_gap(const Surface& s, const NodeRef& n, const ode::Vec& y, SurfaceEval& e) const;
-  /// Forces of a body-attached surface on node n as the exact gradient of its
+  bool surface_gap(size_t si, const NodeRef& n, const ode::Vec& y, SurfaceEval& e) const;
+  /// Forces of body-attached surface si on node n as the exact gradient of its
   /// potential U = 1/2 k |P(R) (x_n - p)|^2 (p = sum w_i x_i the surface's ghost
   /// point, P turning with the Kabsch rotation R): F on n, -F on the body masses
   /// by the barycentric weights w_i, and the direction's rotation torque
@@ -203,7 +227,7 @@ class MechanismSystem final : public ode::OdeSystem {
   /// dissipated power). Computed from y alone. Adds (mass, force [N]) pairs to out.
   /// `known_frame`: the body's frame at y when the caller has it (else fitted here).
   /// `known_omega`: attitude_derivative(*known_frame) when the caller has it.
-  void attached_surface_forces(const Surface& s, const NodeRef& n, const ode::Vec& y,
+  void attached_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set,
                                std::vector<std::pair<int, Eigen::Vector3d>>& out,
                                const BodyFrame* known_frame = nullptr,
                                const std::array<Eigen::Matrix3d, 4>* known_omega = nullptr) const;
@@ -217,17 +241,10 @@ class MechanismSystem final : public ode::OdeSystem {
   const BodyFrame& fitted_frame(int b, const ode::Vec& y) const;
 
   const Mechanism& m_;
+  std::unique_ptr<const MechanismInputs> own_inputs_;  ///< the one-argument constructor's
+  const MechanismInputs* in_;            ///< the inputs read: own_inputs_ or the run's
+  const std::vector<NodeRef> no_nodes_;  ///< held_nodes() of a surface that holds none
   double segment_time_ = 0.0;
-  /// The positions of each body's masses at its last fit, and that fit (fitted_frame).
-  mutable std::vector<std::array<Eigen::Vector3d, 4>> fit_x_;
-  mutable std::vector<BodyFrame> fit_frame_;
-  mutable std::vector<bool> fit_valid_;
-  mutable std::vector<BodyFrame> frames_;
-  mutable std::vector<std::array<Eigen::Matrix3d, 4>> dframes_;
-  mutable ode::Vec force_;
-  mutable std::vector<Eigen::Triplet<double>> triplets_;
-  mutable long zero_length_ = 0;
-  mutable std::vector<std::pair<int, Eigen::Vector3d>> attached_;
   std::vector<double> inv_mass_;
   /// The RHS (and energies, power, monitors) need body frames: body-relative forces
   /// or actuators, body-attached surfaces, or the rotation-dependent min-norm
@@ -239,13 +256,33 @@ class MechanismSystem final : public ode::OdeSystem {
   bool has_actuator_work_ = false;
   bool has_attached_surfaces_ = false;
   bool dissipation_split_ = true;
-  /// Set while conservative_rhs() runs: velocities of dissipative elements count as zero.
-  mutable bool conservative_ = false;
-  mutable ode::Vec dissipate_before_;  ///< dissipate(): the momenta before its updates
-  std::vector<int> rot_;               ///< per body: its rotation states (rigid), else -1
-  mutable std::vector<RigidState> rigid_;
+  std::vector<int> rot_;  ///< per body: its rotation states (rigid), else -1
   bool any_rigid_ = false;
+
+  // The mutable members, per object (one run), never shared.
+  // Pure caches, keyed exactly on the states they are a function of: a hit returns what a
+  // miss computes, bit for bit. The positions of each body's masses at its last fit and that
+  // fit (fitted_frame); each rigid body's rotation, world inverse inertia and angular
+  // velocity at its last quaternion and angular momentum (rigid_pose, rigid_state).
+  mutable std::vector<std::array<Eigen::Vector3d, 4>> fit_x_;
+  mutable std::vector<BodyFrame> fit_frame_;
+  mutable std::vector<bool> fit_valid_;
+  mutable std::vector<RigidState> rigid_;
+  // Scratch, written before it is read within one call: the body frames at the y of the
+  // last update_frames, the forces and torques an evaluation accumulates, the Jacobian's
+  // triplets, one attached surface's forces, dissipate()'s momenta before its updates. One
+  // reader keeps state across calls: kinetic_energy() takes a rigid body's attitude from the
+  // last frames_ (its argument is a force vector with no attitude in it; see there).
+  mutable std::vector<BodyFrame> frames_;
+  mutable std::vector<std::array<Eigen::Matrix3d, 4>> dframes_;
+  mutable ode::Vec force_;
   mutable std::vector<Eigen::Vector3d> torque_;  ///< rhs(): torque on each rigid body [N m]
+  mutable std::vector<Eigen::Triplet<double>> triplets_;
+  mutable std::vector<std::pair<int, Eigen::Vector3d>> attached_;
+  mutable ode::Vec dissipate_before_;
+  // A run statistic, counted by every RHS evaluation and read by nothing that computes:
+  // zero_length_triggers().
+  mutable long zero_length_ = 0;
 };
 
 /// Compares the analytic Jacobian at (t, y) with central differences of the

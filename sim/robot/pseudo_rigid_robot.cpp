@@ -167,6 +167,7 @@ RobotModel build_robot(const scene::Scene& s) {
   m.name = s.name;
   m.gravity = Vector3d(0.0, 0.0, -s.gravity);
   m.simulation.solver = p.solver;
+  m.simulation.energy_blowup_factor = p.energy_blowup_factor;
   // Body-level error norm (optional): the solver controls the motion of the body
   // (CoM, attitude) and of the feet, not the internal vibration of the stiff springs.
   const bool rigid = p.body == scene::PseudoRigid::BodyKind::kRigid;

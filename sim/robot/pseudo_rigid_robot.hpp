@@ -21,7 +21,7 @@
 namespace pronk::robot {
 
 struct RobotModel {
-  pseudorigid::Mechanism mechanism;  ///< the template every run copies
+  pseudorigid::Mechanism mechanism;  ///< const for runs: they change its MechanismInputs
   int body = 0;                      ///< index of the robot body
   /// Per leg (every hip of the scene, disabled ones included):
   std::vector<pseudorigid::NodeRef> hip_node;  ///< where leg forces act (ghost or dummy mass)

@@ -439,12 +439,12 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
 }
 
 /// What a robot run changes as it goes, beside the const RobotModel (MuJoCo's mjData beside
-/// its mjModel): the run's copy of the mechanism, whose leg rest lengths and slide surfaces
+/// its mjModel): the mechanism's run-time inputs, whose leg rest lengths and slide surfaces
 /// the hip placement and the foot switches set (RobotSystem reads them there), the leg
 /// actuators' commands, and the controller's adapted terms.
 struct RunData {
   RunData(const RobotModel& model, const scene::Scene& scene)
-      : mech(model.mechanism),
+      : inputs(model.mechanism),
         push(model.hip.size(), Vector3d::UnitZ()),
         leg_force(model.hip.size(), 0.0),
         off_time(model.hip.size(), 0.0),
@@ -460,7 +460,7 @@ struct RunData {
                                                   static_cast<double>(model.hip.size())))
             : 0.0;
   }
-  pr::Mechanism mech;                ///< this run's copy: hip placement turns the slides
+  pr::MechanismInputs inputs;        ///< hip placement and the feet turn the slides
   std::vector<Vector3d> push;        ///< body-frame push direction of each actuator
   std::vector<double> leg_force;     ///< actuator force of each leg now [N]
   std::vector<double> off_time;      ///< when each actuator switches off [s]
@@ -548,7 +548,7 @@ class RobotRun final : public run::HybridModel {
   /// The stepper's options (verlet's energy budget in joules).
   const ode::SolverOptions& solver() const { return solver_; }
   int dimension() const { return sys_.dimension(); }
-  ode::Vec initial_state() const { return data_.mech.initial_state(); }
+  ode::Vec initial_state() const { return model_.mechanism.initial_state(); }
   /// Before the run: a run starting in the air places its legs for the first touchdown.
   void prepare(ode::Vec& y) {
     if (model_.spring_legs && prs_.hip_rotation) place_legs(0.0, y);
@@ -600,7 +600,7 @@ class RobotRun final : public run::HybridModel {
   }
   Vector3d total_momentum(const ode::Vec& ys) const {
     Vector3d p = Vector3d::Zero();
-    for (size_t j = 0; j < data_.mech.masses.size(); ++j) p += ys.segment<3>(6 * j + 3);
+    for (size_t j = 0; j < model_.mechanism.masses.size(); ++j) p += ys.segment<3>(6 * j + 3);
     return p;
   }
   /// Everything the legs and the ground gave since touchdown (gravity removed) [N s].
@@ -687,7 +687,7 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
       g_(scene.gravity),
       l_(scene.legs.length),
       data_(model, scene),
-      sys_(model, data_.mech, prs_),
+      sys_(model, data_.inputs, prs_),
       msys_(sys_.mechanism()),
       control_(scene, model, data_),
       run_(scene, model, sys_, msys_, result),
@@ -719,7 +719,7 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
       }
     }
   }
-  const pr::Mechanism& mech = data_.mech;
+  const pr::Mechanism& mech = model.mechanism;
   RobotMonitors& mon = result.monitors;
   mon.internal_stiffness = mech.connections.empty() ? 0.0 : mech.connections.front().stiffness;
   if (sys_.rotation_state() >= 0) {  // rigid body: no internal springs; the leg slides' stiffness
@@ -732,7 +732,7 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
   mon.energy_scale =
       total_mass_ * g_ * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
   balance0_ = msys_.energies(mech.initial_state()).total();
-  blowup_ = 10.0 * mon.energy_scale;
+  blowup_ = mech.simulation.energy_blowup_factor * mon.energy_scale;
   run_.balance0 = balance0_;
   run_.blowup = blowup_;
   solver_ = solver_options(prs_, mon.energy_scale);
@@ -790,10 +790,15 @@ bool RobotRun::energy_ok(double t, const ode::Vec& y, const ode::Stepper& steppe
     t_blowup = run_.blowup_time;
   }
   if (!y.allFinite() || !std::isfinite(balance) || !(drift <= blowup_)) {
+    // (The factor is named when the scene changed it from its default.)
+    const double factor = model_.mechanism.simulation.energy_blowup_factor;
+    const std::string set_factor = factor != scene::PseudoRigid{}.energy_blowup_factor
+                                       ? ", energy_blowup_factor " + run::fmt(factor)
+                                       : std::string();
     end_run(reduced::RunStatus::kDiverged,
             "energy blow-up at t = " + run::fmt(t_blowup) + " s: the balance drifted by " +
-                run::fmt(drift) + " J (scale " + run::fmt(result.monitors.energy_scale) +
-                " J); stiffness too high for the solver or the step too large" +
+                run::fmt(drift) + " J (scale " + run::fmt(result.monitors.energy_scale) + " J" +
+                set_factor + "); stiffness too high for the solver or the step too large" +
                 step_note(stepper));
     return false;
   }
@@ -826,7 +831,7 @@ void RobotRun::on_apex(double t, ode::Vec& y) {
     const Com c = body_com(model_, y);
     double e = msys_.energies(y).leg;
     for (int f : model_.foot) {
-      const double m = data_.mech.masses[f].mass;
+      const double m = model_.mechanism.masses[f].mass;
       const Vector3d v = y.segment<3>(6 * f + 3) / m - c.v;
       e += 0.5 * m * v.squaredNorm();
     }
@@ -958,8 +963,7 @@ double RobotRun::energy_thrust(double t, const ode::Vec& y) {
     const Vector3d leg = hip - foot;
     if (foot.z() > kFootLift || !(leg.z() > 0.1 * leg.norm())) continue;  // not pushing up
     const double dz = leg.z() / leg.norm();
-    const double rest =
-        data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    const double rest = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
     K += prs_.leg_stiffness * dz * dz;
     C += prs_.leg_damping * dz * dz;
     s_v += (rest - leg.norm()) * dz;
@@ -1019,7 +1023,7 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
     const double z = y[6 * model_.foot[i] + 2];
     const bool land = i == first ? !sys_.free(i) : !sys_.free(i) && z <= 0.0;
     const bool lift = i == first ? sys_.free(i) : sys_.free(i) && z >= kFootLift;
-    pr::Surface& slide = data_.mech.surfaces[model_.slide[i]];
+    pr::SurfaceInputs& slide = data_.inputs.surfaces[model_.slide[i]];
     if (land) {
       // The hip turns freely about its pitch axis: the foot is held in the plane of
       // the leg and the body x axis (a slot), so the leg swings fore-aft but not
@@ -1030,7 +1034,7 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
         slide.bilateral = true;
         slide.direction = nrm.normalized();
       } else {
-        slide.nodes.clear();
+        slide.holds = false;
       }
       sys_.set_free(i, true);
     } else if (lift) {
@@ -1048,14 +1052,15 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
 /// the foot's velocity across it removed.
 void RobotRun::lift_foot(size_t i, ode::Vec& y) {
   const int foot = model_.foot[i];
-  pr::Surface& slide = data_.mech.surfaces[model_.slide[i]];
+  pr::SurfaceInputs& slide = data_.inputs.surfaces[model_.slide[i]];
   const pr::BodyFrame f = msys_.frames(y)[model_.body];
   const Vector3d w = msys_.body_omega(model_.body, y);
-  const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, slide.ghost};
+  const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost,
+                          model_.mechanism.surfaces[model_.slide[i]].ghost};
   const Vector3d xf = y.segment<3>(6 * foot);
   const Vector3d arm = xf - msys_.node_position(ghost, y);
   if (arm.norm() > 1e-9) {
-    const double m = data_.mech.masses[foot].mass;
+    const double m = model_.mechanism.masses[foot].mass;
     const Vector3d d = arm.normalized();
     const Vector3d vb = f.com_velocity + w.cross(xf - f.com);
     const Vector3d vrel = y.segment<3>(6 * foot + 3) / m - vb;
@@ -1065,7 +1070,7 @@ void RobotRun::lift_foot(size_t i, ode::Vec& y) {
   }
   slide.type = pr::SurfaceType::kLine;
   slide.bilateral = false;
-  slide.nodes = model_.mechanism.surfaces[model_.slide[i]].nodes;
+  slide.holds = true;
   sys_.set_free(i, false);
 }
 
@@ -1093,7 +1098,7 @@ run::Next RobotRun::on_time(double t, ode::Vec& y) {
 void RobotRun::apply_disturbance(const scene::Disturbance& d, ode::Vec& y) {
   const pr::BodyFrame f = msys_.frames(y)[model_.body];
   const Vector3d dw = f.rotation * (scene_.body.inertia.inverse() * d.angular_impulse);
-  const auto& b = data_.mech.bodies[model_.body];
+  const auto& b = model_.mechanism.bodies[model_.body];
   const double e_before = msys_.energies(y).total();
   const int rot = sys_.rotation_state();
   if (rot >= 0) {  // rigid body: dp on its CoM mass, dL = R H
@@ -1103,7 +1108,8 @@ void RobotRun::apply_disturbance(const scene::Disturbance& d, ode::Vec& y) {
   for (int k = 0; k < (rot >= 0 ? 0 : 4); ++k) {
     const int j = b.first_mass + k;
     const Vector3d arm = y.segment<3>(6 * j) - f.com;
-    y.segment<3>(6 * j + 3) += 0.25 * d.linear_impulse + data_.mech.masses[j].mass * dw.cross(arm);
+    y.segment<3>(6 * j + 3) +=
+        0.25 * d.linear_impulse + model_.mechanism.masses[j].mass * dw.cross(arm);
   }
   book_work(e_before, y);
 }
@@ -1123,15 +1129,15 @@ void RobotRun::place_legs(double t, ode::Vec& y) {
   for (size_t i = 0; i < legs_; ++i) {
     if (sys_.free(i)) continue;  // still on the ground
     const int foot = model_.foot[i];
-    const double m = data_.mech.masses[foot].mass;
-    const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost, data_.mech.surfaces[model_.slide[i]].ghost};
+    const double m = model_.mechanism.masses[foot].mass;
+    const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost,
+                            model_.mechanism.surfaces[model_.slide[i]].ghost};
     const Vector3d hip = msys_.node_position(ghost, y);
     const Vector3d d_old = f.rotation * (-data_.push[i]);
     const Vector3d d_new = f.rotation * u[i];
     const Vector3d xf = y.segment<3>(6 * foot);
     // (the spring keeps its deflection when its rest length changes)
-    double& rest_now =
-        data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    double& rest_now = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
     const double ext = (xf - hip).dot(d_old) + rest[i] - rest_now;
     rest_now = rest[i];
     const Vector3d vrel = y.segment<3>(6 * foot + 3) / m - (f.com_velocity + w.cross(xf - f.com));
@@ -1139,7 +1145,7 @@ void RobotRun::place_legs(double t, ode::Vec& y) {
     const Vector3d vn = f.com_velocity + w.cross(xn - f.com) + vrel.dot(d_old) * d_new;
     y.segment<3>(6 * foot) = xn;
     y.segment<3>(6 * foot + 3) = m * vn;
-    data_.mech.surfaces[model_.slide[i]].direction = u[i];
+    data_.inputs.surfaces[model_.slide[i]].direction = u[i];
     data_.push[i] = -u[i];
   }
   data_.common_push = -u[0];  // (a leg still on the ground keeps its direction)
@@ -1184,7 +1190,7 @@ std::vector<double> RobotRun::level_rest_lengths(const control::BodyState& s, co
                                                  const std::vector<Vector3d>& u) const {
   std::vector<double> rest(legs_);
   for (size_t i = 0; i < legs_; ++i) {
-    rest[i] = data_.mech.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    rest[i] = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
   }
   if (!(prs_.level_feet && free_stance_)) return rest;
   double z_mean = 0.0;

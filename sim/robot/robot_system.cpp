@@ -13,17 +13,16 @@ namespace pronk::robot {
 namespace pr = pseudorigid;
 using Eigen::Vector3d;
 
-RobotSystem::RobotSystem(const RobotModel& model, const pr::Mechanism& mechanism,
+RobotSystem::RobotSystem(const RobotModel& model, const pr::MechanismInputs& inputs,
                          const scene::PseudoRigid& settings)
     : model_(model),
       settings_(settings),
-      mech_(mechanism),
-      sys_(mechanism),
+      sys_(model.mechanism, inputs),
       force_(model.hip.size(), 0.0),
       push_(model.hip.size(), Vector3d::UnitZ()),
       free_(model.hip.size(), false),
       fb_(model.hip.size(), 0.0) {
-  for (const auto& ms : mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
+  for (const auto& ms : model.mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   rotation_ = sys_.rotation_state(model.body);
   extra_ = fp_ = fm_ = ode::Vec::Zero(actuator_force_size());
 }
@@ -112,7 +111,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
     const size_t i = g[k];
     const double length =
         (sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i])).norm();
-    const double rest = mech_.connections[static_cast<size_t>(model_.leg_spring[i])].rest_length;
+    const double rest = sys_.inputs().rest_length[static_cast<size_t>(model_.leg_spring[i])];
     const double spring = settings_.leg_stiffness * std::max(0.0, rest - length);
     fb_[i] = std::max(f[static_cast<int>(k)], std::min(0.0, -spring - force_[i]));
   }

@@ -19,8 +19,9 @@ namespace pronk::robot {
 
 class RobotSystem final : public ode::OdeSystem {
  public:
-  /// `mechanism` is the run's own copy of model.mechanism (hip placement turns its slides).
-  RobotSystem(const RobotModel& model, const pseudorigid::Mechanism& mechanism,
+  /// The mechanism is model.mechanism; `inputs` are the run's (hip placement and the foot
+  /// switches change the leg rest lengths and slides there as the run goes).
+  RobotSystem(const RobotModel& model, const pseudorigid::MechanismInputs& inputs,
               const scene::PseudoRigid& settings);
 
   int dimension() const override { return sys_.dimension(); }
@@ -102,13 +103,15 @@ class RobotSystem final : public ode::OdeSystem {
 
   const RobotModel& model_;
   const scene::PseudoRigid& settings_;
-  const pseudorigid::Mechanism& mech_;  ///< the run's copy (leg rest lengths change)
   pseudorigid::MechanismSystem sys_;
   std::vector<double> force_;
   std::vector<Eigen::Vector3d> push_;
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
   int rotation_ = -1;  ///< rigid body: its rotation states in y
+  // Scratch, written before it is read within one call (no state carried between calls): the
+  // actuator forces and their differences, the feedback's leg forces, grounded legs,
+  // directions, system and solution, and the Jacobian's perturbed state and triplets.
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
   mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)

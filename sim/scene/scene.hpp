@@ -174,6 +174,10 @@ struct PseudoRigid {
   /// setpoint) is learnt away; 0 = off [-].
   double position_trim_gain = 0.0;
   Thrust thrust = Thrust::kImpulse;
+  /// Energy blow-up: a run whose energy balance drifts by more than this times the run's
+  /// energy scale ends diverged. The mechanisms' setting (pseudorigid::SimulationOptions::
+  /// energy_blowup_factor), with its default [-].
+  double energy_blowup_factor = 10.0;
   /// Error norm of the adaptive solver: false = every state (resolves the stiff
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).

@@ -9,7 +9,9 @@
 
 #include "sim/io/robot_settings.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/pseudorigid/model.hpp"
 #include "sim/reduced/simulator.hpp"
+#include "sim/robot/pseudo_rigid_robot.hpp"
 #include "sim/robot/robot_simulator.hpp"
 
 using namespace pronk;
@@ -199,6 +201,50 @@ TEST_CASE("robot scene: pseudo_rigid settings load, round-trip and are listed as
   } catch (const io::InputError& e) {
     CHECK(std::string(e.what()).find("/pseudo_rigid/contact_stiffness") != std::string::npos);
   }
+}
+
+// The robot's energy blow-up factor is the mechanisms' setting (pseudorigid
+// SimulationOptions::energy_blowup_factor): the same default, read and validated by the scene
+// loader, carried into the robot's mechanism; a small one ends the run `diverged` naming it.
+TEST_CASE("robot pseudo_rigid energy_blowup_factor: default, validated, ends a run diverged",
+          "[robot]") {
+  CHECK(scene::PseudoRigid{}.energy_blowup_factor ==
+        pseudorigid::SimulationOptions{}.energy_blowup_factor);
+  const scene::Scene s = load("case5_pr_hop_height.json", {"/pseudo_rigid/energy_blowup_factor=3"});
+  CHECK(s.pseudo_rigid.energy_blowup_factor == 3.0);
+  CHECK(robot::build_robot(s).mechanism.simulation.energy_blowup_factor == 3.0);
+  const nlohmann::json back = io::scene_to_json(s);
+  CHECK(back["pseudo_rigid"]["energy_blowup_factor"] == 3.0);
+  CHECK(io::scene_to_json(io::parse_scene(back, "resolved")) == back);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"0", "number 0"}, {"-2", "number -2"}, {"\"big\"", "string \"big\""}};
+  for (const auto& [value, found] : bad) {
+    try {
+      load("case5_pr_hop_height.json", {"/pseudo_rigid/energy_blowup_factor=" + value});
+      FAIL("energy_blowup_factor " << value << " accepted");
+    } catch (const io::InputError& e) {
+      INFO(e.what());
+      CHECK(e.file().find("case5_pr_hop_height.json") != std::string::npos);
+      CHECK(e.pointer() == "/pseudo_rigid/energy_blowup_factor");
+      CHECK(e.expected() == "a finite number > 0 and <= 1e+12");
+      CHECK(e.found() == found);
+    }
+  }
+  // The default run's balance drifts by ~7e-8 J over 0.5 s (scale 7.4 J): far below 10 x the
+  // scale, far above 1e-12 x the scale. The reason names a factor the scene set (not the
+  // default: the reasons of default runs stay as they were).
+  const robot::RobotRunResult ok =
+      robot::simulate(load("case5_pr_hop_height.json", {"/simulation/duration=0.5"}));
+  REQUIRE(ok.run.status == reduced::RunStatus::kCompleted);
+  const robot::RobotRunResult r = robot::simulate(
+      load("case5_pr_hop_height.json",
+           {"/simulation/duration=0.5", "/pseudo_rigid/energy_blowup_factor=1e-12"}));
+  INFO(r.run.reason);
+  CHECK(r.run.status == reduced::RunStatus::kDiverged);
+  CHECK(r.run.reason.find("energy blow-up") != std::string::npos);
+  CHECK(r.run.reason.find("energy_blowup_factor 1e-12") != std::string::npos);
+  CHECK(ok.run.reason.find("energy_blowup_factor") == std::string::npos);
+  CHECK(r.run.t_end < 0.5);
 }
 
 TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[robot][heavy]") {

@@ -50,7 +50,8 @@ const std::string kVerlet = R"("method":"verlet","h_fixed":1.5e-4)";
 TEST_CASE("robot system forwards the mechanism's dissipation split and metric", "[robot]") {
   const scene::Scene s = load("pr_running.json");
   const robot::RobotModel model = robot::build_robot(s);
-  robot::RobotSystem sys(model, model.mechanism, s.pseudo_rigid);
+  const pseudorigid::MechanismInputs inputs(model.mechanism);
+  robot::RobotSystem sys(model, inputs, s.pseudo_rigid);
   REQUIRE(sys.has_dissipation_split());
   CHECK(sys.momentum_block() == 3);
   const int n = sys.dimension();
