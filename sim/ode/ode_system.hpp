@@ -28,15 +28,6 @@ class OdeSystem {
   /// skips the df/dt term; otherwise it estimates df/dt by a forward difference).
   virtual bool autonomous() const { return false; }
 
-  /// Optional error norm of adaptive steppers. `err` is the local error estimate
-  /// of a step from y0 to y1; the result is compared with 1 (<= 1: accept).
-  /// Default (has_error_norm() false): the RMS of err_i / (atol + rtol max(|y0_i|, |y1_i|)).
-  virtual bool has_error_norm() const { return false; }
-  virtual double error_norm(const Vec& /*err*/, const Vec& /*y0*/, const Vec& /*y1*/,
-                            double /*rtol*/, double /*atol*/) const {
-    return 0.0;
-  }
-
   /// Optional mechanical structure for the symplectic stepper ("verlet"): the states split
   /// into positions q and momenta p with dq/dt = G(p) depending on the momenta only (not on q
   /// or t) and dp/dt = F(t, q, p), the rest of f.

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "sim/ode/error_norm.hpp"
 #include "sim/ode/ode_system.hpp"
 
 namespace pronk::ode {
@@ -133,8 +134,10 @@ class Stepper {
   virtual double switching_offset() const { return 0.0; }
 };
 
-/// Creates the stepper of options.method for systems of dimension n.
-std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
+/// Creates the stepper of options.method for systems of dimension n. `norm`: the error norm
+/// of the adaptive methods (dopri5, rodas4, radau5) for the stepper's life; the others
+/// ignore it (cvode_bdf keeps CVODE's own weighted RMS norm).
+std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n, ErrorNorm norm = {});
 
 /// Why integrate() returned.
 /// kMaxSteps: the stepper's counters (accepted + rejected, since it was made) reached

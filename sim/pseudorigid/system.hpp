@@ -34,9 +34,10 @@ class MechanismSystem final : public ode::OdeSystem {
   bool has_jacobian() const override { return true; }
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }  // time windows are handled by segment_time
-  bool has_error_norm() const override { return m_.simulation.error_norm == ErrorNorm::kBody; }
+  /// The body-level error norm (SimulationOptions::error_norm "body"; solver_norm.hpp hands
+  /// it to the adaptive steppers).
   double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
-                    double atol) const override;
+                    double atol) const;
 
   /// y = (x_j, p_j) per mass: dx/dt = p/m depends on the momenta only (method verlet).
   bool has_mechanical_split() const override { return true; }

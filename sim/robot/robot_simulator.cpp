@@ -545,6 +545,7 @@ class RobotRun final : public run::HybridModel {
   /// The stepper's options (verlet's energy budget in joules).
   const ode::SolverOptions& solver() const { return solver_; }
   int dimension() const { return sys_.dimension(); }
+  ode::ErrorNorm error_norm() const { return sys_.error_norm(); }
   ode::Vec initial_state() const { return data_.mech.initial_state(); }
   /// Before the run: a run starting in the air places its legs for the first touchdown.
   void prepare(ode::Vec& y) {
@@ -1146,7 +1147,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   const auto wall_start = std::chrono::steady_clock::now();
   const RobotModel model = build_robot(scene);
   auto robot = std::make_unique<RobotRun>(scene, model, options);
-  auto stepper = ode::make_stepper(robot->solver(), robot->dimension());
+  auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);
   const run::HybridEnd end = run::run_hybrid(*robot, *stepper, 0.0, y);
