@@ -42,7 +42,7 @@ std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n
 std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n);
 
 /// Velocity Verlet with fixed step options.h_fixed [s] and cubic Hermite dense output;
-/// reset() throws std::invalid_argument for a system without a mechanical split.
+/// reset() throws std::invalid_argument for a system that is not an ode::MechanicalSystem.
 std::unique_ptr<Stepper> make_verlet_stepper(const SolverOptions& options, int n);
 
 }  // namespace pronk::ode::detail

@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/solver_norm.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/run/hybrid_run.hpp"
@@ -88,7 +89,7 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
   const ode::OdeSystem& system() const override { return sys_; }
   const ode::SolverOptions& integration_options() const override { return guards_off_; }
   void start(const ode::Stepper& stepper, const ode::Vec&) override {
-    booked_a_ = stepper.booked_dissipation();
+    booked_a_ = ode::booked_dissipation(stepper);
   }
   double segment_end(double) const override { return bps_[bi_]; }
   std::span<const ode::EventFunction* const> events() const override { return {}; }
@@ -136,12 +137,12 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
   }
   /// Adds the dissipation and actuator work over [ta, te] (te <= the step's end) to *d, *w:
   /// by Gauss-Legendre on the step's dense output, or, for a stepper that books the
-  /// dissipation itself (OdeSystem::dissipate; linear in time inside a step), from its books
+  /// dissipation itself (MechanicalSystem::dissipate; linear in time inside a step), from its books
   /// (the actuator work is then the only integral).
   void flows(const ode::Stepper& st, double te, double booked_b, double dissipated_a, double* d,
              double* w) {
     const double ta = st.t_prev(), tb = st.t();
-    const bool booked = st.books_dissipation();
+    const bool booked = ode::books_dissipation(st);
     if (booked) *d = dissipated_a + (booked_b - booked_a_) * (te - ta) / (tb - ta);
     if (!sys_.has_power_flows() || (booked && !sys_.has_actuator_work())) return;
     for (int q = 0; q < 3; ++q) {
@@ -210,7 +211,7 @@ void MechanismRun::on_step(const ode::Stepper& stepper, double) {
     diverge(buf);
     return;
   }
-  const double booked_b = stepper.booked_dissipation();
+  const double booked_b = ode::booked_dissipation(stepper);
   flows(stepper, tb, booked_b, dissipated_a, &dissipated_, &work_);
   const Energies eb = monitor(yb);
   while (next_out_ <= tb * (1.0 + 1e-12) && next_out_ <= opt_.t_end * (1.0 + 1e-12)) {
@@ -382,7 +383,7 @@ RunSummary simulate(const Mechanism& m) {
   // zero-length rule.
   warn_slender_bodies(m, out);
   warn_energy_drift(out, out.t.empty() ? 0.0 : hybrid.sample_drift(out.t.size() - 1),
-                    stepper->books_dissipation());
+                    ode::books_dissipation(*stepper));
   warn_budgets(m.simulation, out);
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -10,6 +10,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/math/rotation.hpp"
+#include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/pseudorigid/stability.hpp"
 #include "sim/reduced/run_record.hpp"
@@ -262,7 +263,7 @@ void book_hip_work(RobotMonitors& m, double dE) {
 }
 
 /// Energy flows, monitors and samples along the accepted steps. Method verlet books both
-/// flows as its steps do: the dissipation is the stepper's own (OdeSystem::dissipate), the
+/// flows as its steps do: the dissipation is the stepper's own (MechanicalSystem::dissipate), the
 /// actuator work 1/2 (F_a + F_b) . (x_b - x_a) over the masses with the actuator forces F at
 /// the step's ends (then E - T + D - W is exact for quadratic potentials, T Verlet's bounded
 /// term; docs/pseudorigid.md), both linear in time within a step. Other methods integrate
@@ -283,7 +284,7 @@ class Observer final : public ode::StepObserver {
     const double d_a = run_.dissipated, w_a = run_.work;
     double step_d = 0.0, step_w = 0.0;  // the whole step's flows (verlet) [J]
     if (verlet_) {
-      const double booked = st.booked_dissipation();
+      const double booked = ode::booked_dissipation(st);
       step_d = booked - booked_;
       booked_ = booked;
       step_w = verlet_work(st);
@@ -302,7 +303,7 @@ class Observer final : public ode::StepObserver {
     }
   }
   void start(const ode::Stepper& st, const ode::Vec& y) {
-    booked_ = st.booked_dissipation();
+    booked_ = ode::booked_dissipation(st);
     run_.sample(0.0, y, run_.dissipated, run_.work);
     next_ = interval_ * static_cast<double>(++count_);
   }

@@ -18,7 +18,7 @@
 
 namespace pronk::robot {
 
-class RobotSystem final : public ode::OdeSystem {
+class RobotSystem final : public ode::MechanicalSystem {
  public:
   /// `mechanism` is the run's own copy of model.mechanism (hip placement turns its slides).
   RobotSystem(const RobotModel& model, const pseudorigid::Mechanism& mechanism,
@@ -29,7 +29,6 @@ class RobotSystem final : public ode::OdeSystem {
   bool has_jacobian() const override { return true; }
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.position_rate(y, dydt);
