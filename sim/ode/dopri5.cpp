@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/ode/step_size_controller.hpp"
 #include "sim/ode/steppers.hpp"
 
 namespace pronk::ode::detail {
@@ -29,22 +30,23 @@ constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700
                  d4 = -10690763975.0 / 1880347072.0, d5 = 701980252875.0 / 199316789632.0,
                  d6 = -1453857185.0 / 822651844.0, d7 = 69997945.0 / 29380423.0;
 
-// Step-size control (Hairer's defaults): safety, factor limits, PI exponent.
-constexpr double kSafety = 0.9;
-constexpr double kFacMin = 0.2;   ///< smallest factor h_new / h
-constexpr double kFacMax = 10.0;  ///< largest factor h_new / h
-constexpr double kBeta = 0.04;    ///< PI (Lund stabilisation) exponent
-constexpr double kExpo1 = 0.2 - kBeta * 0.75;
-constexpr int kMaxNonFinite = 8;  ///< step reductions on non-finite results before giving up
+// Step-size control (Hairer's defaults): safety 0.9, h_new / h in [0.2, 10], PI (Lund
+// stabilisation) exponents.
+constexpr double kBeta = 0.04;
+const StepSizeController::Params kControl{.safety = 0.9,
+                                          .quot_min = 1.0 / 10.0,
+                                          .quot_max = 1.0 / 0.2,
+                                          .exponent = 0.2 - kBeta * 0.75,
+                                          .err_floor = 0.0,
+                                          .beta = kBeta};
 
 class Dopri5Stepper final : public Stepper {
  public:
-  Dopri5Stepper(const SolverOptions& options, int n)
+  Dopri5Stepper(const SolverOptions& options, int n, ErrorNorm norm)
       : rtol_(options.rtol),
         atol_(options.atol),
-        h_max_(options.h_max),
-        h_min_(options.h_min),
-        h_initial_(options.h_initial),
+        norm_(std::move(norm)),
+        control_(kControl, options),
         y_(Vec::Zero(n)),
         y_prev_(Vec::Zero(n)),
         y_new_(Vec::Zero(n)),
@@ -62,53 +64,14 @@ class Dopri5Stepper final : public Stepper {
     y_prev_ = y;
     sys.rhs(t_, y_, k_[0]);  // FSAL stage: y may have jumped
     ++counters_.rhs_evaluations;
-    if (!h_chosen_) {
-      h_ = h_initial_ > 0.0 ? std::min(h_initial_, h_max_) : initial_step(sys);
-      h_chosen_ = true;
-    }
+    control_.choose_initial([&] { return initial_step(sys); });
   }
 
   StepStatus step(const OdeSystem& sys, double t_limit) override {
     if (!(t_limit > t_)) return StepStatus::kOk;
-    bool rejected = false;
-    int non_finite = 0;
-    for (;;) {
-      const double h_adapted = std::min(h_, h_max_);
-      double h = h_adapted;
-      double t_new = t_ + h;
-      if (t_ + 1.01 * h >= t_limit) {  // stretch or shorten to hit t_limit exactly
-        h = t_limit - t_;
-        t_new = t_limit;
-      }
-      if (!(t_new > t_)) return StepStatus::kStepSizeCollapse;  // h below time resolution
-
-      const double err = attempt(sys, h, t_new);
-      if (!std::isfinite(err)) {
-        ++counters_.steps_rejected;
-        if (++non_finite > kMaxNonFinite) return StepStatus::kNonFinite;
-        h_ = h * 0.1;
-        rejected = true;
-        if (h_ < h_min_) return StepStatus::kStepSizeCollapse;
-        continue;
-      }
-      const double fac11 = std::pow(err, kExpo1);
-      if (err <= 1.0) {
-        double fac = fac11 / std::pow(facold_, kBeta);
-        fac = std::clamp(fac / kSafety, 1.0 / kFacMax, 1.0 / kFacMin);
-        double h_next = h / fac;
-        facold_ = std::max(err, 1e-4);
-        if (rejected) h_next = std::min(h_next, h);
-        // A step shortened to hit t_limit says little about the right size.
-        if (h < h_adapted && !rejected) h_next = std::max(h_next, h_adapted);
-        h_ = std::min(h_next, h_max_);
-        accept(h, t_new);
-        return StepStatus::kOk;
-      }
-      ++counters_.steps_rejected;
-      rejected = true;
-      h_ = h / std::min(1.0 / kFacMin, fac11 / kSafety);
-      if (h_ < h_min_) return StepStatus::kStepSizeCollapse;
-    }
+    return control_.step(
+        t_, t_limit, counters_, [&](double h, double t_new) { return attempt(sys, h, t_new); },
+        [&](double h, double t_new) { accept(h, t_new); });
   }
 
   void dense(double t, Vec& y_out) const override {
@@ -129,7 +92,7 @@ class Dopri5Stepper final : public Stepper {
   double t() const override { return t_; }
   double t_prev() const override { return t_prev_; }
   const Vec& y() const override { return y_; }
-  double h() const override { return h_; }
+  double h() const override { return control_.h(); }
   const SolverCounters& counters() const override { return counters_; }
   SolverCounters& mutable_counters() override { return counters_; }
 
@@ -156,18 +119,10 @@ class Dopri5Stepper final : public Stepper {
     if (!y_new_.allFinite()) return std::numeric_limits<double>::quiet_NaN();
     sys.rhs(t_new, y_new_, k7);
     ++counters_.rhs_evaluations;
-    // Error estimate into y_tmp_, then the RMS norm.
+    // Error estimate into y_tmp_, then its norm.
     y_tmp_.noalias() = (h * e1) * k1 + (h * e3) * k3 + (h * e4) * k4 + (h * e5) * k5 +
                        (h * e6) * k6 + (h * e7) * k7;
-    if (sys.has_error_norm()) return sys.error_norm(y_tmp_, y_, y_new_, rtol_, atol_);
-    double sum = 0.0;
-    const Eigen::Index n = y_.size();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double sk = atol_ + rtol_ * std::max(std::abs(y_[i]), std::abs(y_new_[i]));
-      const double q = y_tmp_[i] / sk;
-      sum += q * q;
-    }
-    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+    return norm_(y_tmp_, y_, y_new_, rtol_, atol_);
   }
 
   /// Commits the trial step: FSAL swaps k7 into k1 (old k1 kept in k_[6]).
@@ -199,14 +154,9 @@ class Dopri5Stepper final : public Stepper {
   double initial_step(const OdeSystem& sys) {
     const Vec& f0 = k_[0];
     const Eigen::Index n = y_.size();
-    double dnf = 0.0, dny = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double sk = atol_ + rtol_ * std::abs(y_[i]);
-      dnf += (f0[i] / sk) * (f0[i] / sk);
-      dny += (y_[i] / sk) * (y_[i] / sk);
-    }
-    double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : std::sqrt(dny / dnf) * 0.01;
-    h = std::min(h, h_max_);
+    double dnf = 0.0;
+    double h = StepSizeController::first_guess(y_, f0, rtol_, atol_, &dnf);
+    h = std::min(h, control_.h_max());
     y_tmp_.noalias() = y_ + h * f0;
     sys.rhs(t_ + h, y_tmp_, k_[1]);
     ++counters_.rhs_evaluations;
@@ -218,19 +168,17 @@ class Dopri5Stepper final : public Stepper {
     }
     der2 = std::sqrt(der2) / h;
     const double der12 = std::max(der2, std::sqrt(dnf));
-    if (!std::isfinite(der12)) return std::max(std::min(h, 1e-6), h_min_);
+    if (!std::isfinite(der12)) return std::max(std::min(h, 1e-6), control_.h_min());
     const double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.2);
-    return std::min({100.0 * h, h1, h_max_});
+    return std::min({100.0 * h, h1, control_.h_max()});
   }
 
   double rtol_, atol_;
-  double h_max_, h_min_, h_initial_;  ///< step limits and first trial step [s]
-  double t_ = 0.0;                    ///< current time [s]
-  double t_prev_ = 0.0;               ///< start of the last accepted step [s]
-  double h_ = 0.0;                    ///< adapted step the next attempt tries [s]
-  double h_last_ = 0.0;               ///< size of the last accepted step; 0 after reset [s]
-  double facold_ = 1e-4;              ///< previous accepted error (PI control)
-  bool h_chosen_ = false;             ///< initial step chosen (first reset done)
+  ErrorNorm norm_;
+  StepSizeController control_;  ///< the adapted step and its PI control
+  double t_ = 0.0;              ///< current time [s]
+  double t_prev_ = 0.0;         ///< start of the last accepted step [s]
+  double h_last_ = 0.0;         ///< size of the last accepted step; 0 after reset [s]
   Vec y_, y_prev_, y_new_, y_tmp_;
   Vec k_[7];          ///< stages; after accept k_[0] = f(t, y), k_[6] = f(t_prev, y_prev)
   mutable Vec r_[4];  ///< dense output coefficients (built lazily)
@@ -240,8 +188,8 @@ class Dopri5Stepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n) {
-  return std::make_unique<Dopri5Stepper>(options, n);
+std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n, ErrorNorm norm) {
+  return std::make_unique<Dopri5Stepper>(options, n, std::move(norm));
 }
 
 }  // namespace pronk::ode::detail

@@ -21,6 +21,7 @@
 #include <complex>
 #include <limits>
 
+#include "sim/ode/step_size_controller.hpp"
 #include "sim/ode/steppers.hpp"
 #include "sim/ode/stiff_linear_algebra.hpp"
 
@@ -72,20 +73,25 @@ const Radau5Constants& k() {
 }
 
 // Controller constants (RADAU5 defaults).
-constexpr int kNit = 7;                       ///< Newton iterations per attempt
-constexpr double kSafe = 0.9;                 ///< safety factor
-constexpr double kFacL = 5.0;                 ///< largest decrease: h / 5
-constexpr double kFacR = 1.0 / 8.0;           ///< largest increase: 8 h
-constexpr double kThet = 1e-3;                ///< Newton rate below which the Jacobian is reused
+constexpr int kNit = 7;         ///< Newton iterations per attempt
+constexpr double kSafe = 0.9;   ///< safety factor
+constexpr double kThet = 1e-3;  ///< Newton rate below which the Jacobian is reused
+/// h_new = h / clamp(err^(1/4) / fac, 1/8, 5) with fac <= kSafe by the Newton iterations
+/// taken, and Gustafsson's predictive controller; the error is at least 1e-10 already.
+const StepSizeController::Params kControl{.safety = kSafe,
+                                          .quot_min = 1.0 / 8.0,
+                                          .quot_max = 5.0,
+                                          .exponent = 0.25,
+                                          .err_floor = 0.0,
+                                          .predictive = true};
 constexpr double kQuot1 = 1.0, kQuot2 = 1.2;  ///< keep h (and the LU) if hnew/h is in here
 constexpr int kMaxFailures = 40;              ///< consecutive failed attempts before giving up
 
 class Radau5Stepper final : public Stepper {
  public:
-  Radau5Stepper(const SolverOptions& options, int n)
-      : h_max_(options.h_max),
-        h_min_(options.h_min),
-        h_initial_(options.h_initial),
+  Radau5Stepper(const SolverOptions& options, int n, ErrorNorm norm)
+      : norm_(std::move(norm)),
+        control_(kControl, options),
         n_(n),
         lu1_(n <= options.dense_lu_max_dimension),
         lu2_(n <= options.dense_lu_max_dimension) {
@@ -116,10 +122,7 @@ class Radau5Stepper final : public Stepper {
     jacobian_fresh_ = false;
     have_jacobian_ = false;
     first_ = true;
-    if (!h_chosen_) {
-      h_ = h_initial_ > 0.0 ? std::min(h_initial_, h_max_) : 1e-6;
-      h_chosen_ = true;
-    }
+    control_.choose_initial([] { return 1e-6; });
   }
 
   StepStatus step(const OdeSystem& sys, double t_limit) override {
@@ -130,22 +133,17 @@ class Radau5Stepper final : public Stepper {
     for (int i = 0; i < n_; ++i) scal_[i] = atol_ + rtol_ * std::abs(y_[i]);
     for (;;) {
       if (failures > kMaxFailures) return StepStatus::kNonFinite;
-      const double h_adapted = std::min(h_, h_max_);
-      double h = h_adapted;
-      double t_new = t_ + h;
-      if (t_ + 1.01 * h >= t_limit) {
-        h = t_limit - t_;
-        t_new = t_limit;
-      }
+      const StepSizeController::Trial tr = control_.trial(t_, t_limit);
+      const double h = tr.h, t_new = tr.t_new;
       if (!(t_new > t_)) return StepStatus::kStepSizeCollapse;
-      if (h_adapted < h_min_) return StepStatus::kStepSizeCollapse;
+      if (tr.h_adapted < control_.h_min()) return StepStatus::kStepSizeCollapse;
 
       // A failed attempt recomputes the Jacobian at the step start unless it is fresh.
       auto retry = [&](double h_next) {
         ++counters_.steps_rejected;
         reject = true;
         ++failures;
-        h_ = h_next;
+        control_.retry(h_next);  // (h_min is checked at the next attempt)
         if (!jacobian_fresh_) evaluate_jacobian(sys);
       };
 
@@ -173,13 +171,11 @@ class Radau5Stepper final : public Stepper {
         continue;
       }
       const double fac = std::min(kSafe, kSafe * (1.0 + 2.0 * kNit) / (newt + 2.0 * kNit));
-      const double quot = std::clamp(std::pow(err, 0.25) / fac, kFacR, kFacL);
-      const double h_new = h / quot;
       if (err < 1.0) {
-        accept_and_adapt(sys, h, t_new, h_adapted, err, quot, h_new, reject);
+        accept_and_adapt(sys, tr, err, fac, reject);
         return StepStatus::kOk;
       }
-      retry(first_ ? 0.1 * h : h_new);
+      retry(first_ ? 0.1 * h : h / control_.quotient(err, fac));
     }
   }
 
@@ -197,7 +193,7 @@ class Radau5Stepper final : public Stepper {
   double t() const override { return t_; }
   double t_prev() const override { return t_prev_; }
   const Vec& y() const override { return y_; }
-  double h() const override { return h_; }
+  double h() const override { return control_.h(); }
   const SolverCounters& counters() const override { return counters_; }
   SolverCounters& mutable_counters() override { return counters_; }
 
@@ -285,26 +281,18 @@ class Radau5Stepper final : public Stepper {
     return NewtonOutcome::kFailed;
   }
 
-  /// Accepts a step of error err < 1 and chooses the next step size from the proposal
-  /// h_new = h / quot (Gustafsson's predictive controller) and whether to keep the Jacobian.
-  void accept_and_adapt(const OdeSystem& sys, double h, double t_new, double h_adapted, double err,
-                        double quot, double h_new, bool reject) {
-    if (!first_ && h_acc_ > 0.0) {  // Gustafsson's predictive controller
-      double facgus = (h_acc_ / h) * std::pow(err * err / err_acc_, 0.25) / kSafe;
-      facgus = std::clamp(facgus, kFacR, kFacL);
-      quot = std::max(quot, facgus);
-      h_new = h / quot;
-    }
-    h_acc_ = h;
-    err_acc_ = std::max(1e-2, err);
+  /// Accepts the trial step of error err < 1 (Newton safety factor fac) and chooses the
+  /// next step size (the predictive controller, not after a restart) and whether to keep the
+  /// Jacobian.
+  void accept_and_adapt(const OdeSystem& sys, const StepSizeController::Trial& tr, double err,
+                        double fac, bool reject) {
+    const double h = tr.h;
+    double h_new = control_.bounded(control_.accepted(h, err, fac, !first_), h, reject);
     first_ = false;
-    accept(sys, h, t_new);
-    h_new = std::min(h_new, h_max_);
-    if (reject) h_new = std::min(h_new, h);
+    accept(sys, h, tr.t_new);
     const double qt = h_new / h;
-    if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;    // keep h and the LU
-    if (h < h_adapted && !reject) h_new = std::max(h_new, h_adapted);  // clipped at t_limit
-    h_ = h_new;
+    if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;  // keep h and the LU
+    control_.set_next(h_new, tr, reject);
     // Reuse the Jacobian while the Newton iteration converges this fast.
     if (theta_ <= kThet) {
       jacobian_fresh_ = false;
@@ -344,17 +332,19 @@ class Radau5Stepper final : public Stepper {
     im = cz_.imag();
   }
 
-  double norm_of(const OdeSystem& sys, const Vec& e) const {
-    if (sys.has_error_norm()) {
-      tmp_ = y_ + z3_;
-      return sys.error_norm(e, y_, tmp_, rtol_, atol_);
+  /// The error norm of e: the plain norm weighs by the step's start only (RADAU5's scal),
+  /// any other sees both ends of the step.
+  double norm_of(const Vec& e) const {
+    if (norm_.is_plain()) {
+      double sum = 0.0;
+      for (int i = 0; i < n_; ++i) {
+        const double q = e[i] / scal_[i];
+        sum += q * q;
+      }
+      return std::sqrt(sum / std::max(1, n_));
     }
-    double sum = 0.0;
-    for (int i = 0; i < n_; ++i) {
-      const double q = e[i] / scal_[i];
-      sum += q * q;
-    }
-    return std::sqrt(sum / std::max(1, n_));
+    tmp_ = y_ + z3_;
+    return norm_(e, y_, tmp_, rtol_, atol_);
   }
 
   /// Hairer's estimate err = (gamma/h - J)^-1 (f0 + sum dd_i z_i / h), with one
@@ -364,14 +354,14 @@ class Radau5Stepper final : public Stepper {
     g2_ = (c.dd1 / h) * z1_ + (c.dd2 / h) * z2_ + (c.dd3 / h) * z3_;
     err_ = g2_ + f0_;
     solve_real(err_);
-    double err = std::max(norm_of(sys, err_), 1e-10);
+    double err = std::max(norm_of(err_), 1e-10);
     if (err >= 1.0 && (first_ || reject)) {
       tmp_ = y_ + err_;
       sys.rhs(t_, tmp_, g1_);
       ++counters_.rhs_evaluations;
       err_ = g1_ + g2_;
       solve_real(err_);
-      err = std::max(norm_of(sys, err_), 1e-10);
+      err = std::max(norm_of(err_), 1e-10);
     }
     return err;
   }
@@ -395,18 +385,16 @@ class Radau5Stepper final : public Stepper {
     ++counters_.steps_accepted;
   }
 
+  ErrorNorm norm_;
+  StepSizeController control_;      ///< the adapted step and its predictive control
   double rtol_ = 0.0, atol_ = 0.0;  ///< transformed tolerances
   double fnewt_ = 0.0;              ///< Newton stopping tolerance
-  double h_max_, h_min_, h_initial_;
   int n_;
   double t_ = 0.0, t_prev_ = 0.0;  ///< [s]
-  double h_ = 0.0;                 ///< next trial step [s]
   double h_last_ = 0.0;            ///< last accepted step, 0 after reset [s]
-  double h_acc_ = 0.0, err_acc_ = 1e-2;
-  double h_factored_ = -1.0;  ///< [s]
+  double h_factored_ = -1.0;       ///< [s]
   double faccon_ = 1.0, theta_ = kThet;
   bool factorization_ok_ = false;
-  bool h_chosen_ = false;
   bool first_ = true;
   bool have_jacobian_ = false;   ///< j_sparse_ holds a Jacobian (maybe of an earlier point)
   bool jacobian_fresh_ = false;  ///< ... evaluated at (t_, y_)
@@ -422,8 +410,8 @@ class Radau5Stepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n) {
-  return std::make_unique<Radau5Stepper>(options, n);
+std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n, ErrorNorm norm) {
+  return std::make_unique<Radau5Stepper>(options, n, std::move(norm));
 }
 
 }  // namespace pronk::ode::detail

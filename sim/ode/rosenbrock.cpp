@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/ode/step_size_controller.hpp"
 #include "sim/ode/steppers.hpp"
 #include "sim/ode/stiff_linear_algebra.hpp"
 
@@ -43,19 +44,20 @@ constexpr double h31 = -0.6762803392801253, h32 = 6.087714651680015, h33 = 16.43
 
 // Step-size control (RODAS defaults): h_new = h / clamp(err^(1/4) / safety, 1/6, 5),
 // with Gustafsson's predictive controller after accepted steps.
-constexpr double kSafety = 0.9;
-constexpr double kFacMinInv = 5.0;  ///< largest decrease factor
-constexpr double kFacMaxInv = 1.0 / 6.0;
-constexpr int kMaxNonFinite = 8;
+const StepSizeController::Params kControl{.safety = 0.9,
+                                          .quot_min = 1.0 / 6.0,
+                                          .quot_max = 5.0,
+                                          .exponent = 0.25,
+                                          .err_floor = 1e-300,
+                                          .predictive = true};
 
 class Rodas4Stepper final : public Stepper {
  public:
-  Rodas4Stepper(const SolverOptions& options, int n)
+  Rodas4Stepper(const SolverOptions& options, int n, ErrorNorm norm)
       : rtol_(options.rtol),
         atol_(options.atol),
-        h_max_(options.h_max),
-        h_min_(options.h_min),
-        h_initial_(options.h_initial),
+        norm_(std::move(norm)),
+        control_(kControl, options),
         y_(Vec::Zero(n)),
         y_prev_(Vec::Zero(n)),
         y_new_(Vec::Zero(n)),
@@ -80,60 +82,15 @@ class Rodas4Stepper final : public Stepper {
     sys.rhs(t_, y_, f0_);
     ++counters_.rhs_evaluations;
     jacobian_current_ = false;
-    if (!h_chosen_) {
-      h_ = h_initial_ > 0.0 ? std::min(h_initial_, h_max_) : initial_step();
-      h_chosen_ = true;
-    }
+    control_.choose_initial([&] { return initial_step(); });
   }
 
   StepStatus step(const OdeSystem& sys, double t_limit) override {
     if (!(t_limit > t_)) return StepStatus::kOk;
-    bool rejected = false;
-    int non_finite = 0;
     if (!jacobian_current_) evaluate_jacobian(sys);
-    for (;;) {
-      const double h_adapted = std::min(h_, h_max_);
-      double h = h_adapted;
-      double t_new = t_ + h;
-      if (t_ + 1.01 * h >= t_limit) {
-        h = t_limit - t_;
-        t_new = t_limit;
-      }
-      if (!(t_new > t_)) return StepStatus::kStepSizeCollapse;
-
-      const double err = attempt(sys, h, t_new);
-      if (!std::isfinite(err)) {
-        ++counters_.steps_rejected;
-        if (++non_finite > kMaxNonFinite) return StepStatus::kNonFinite;
-        h_ = h * 0.1;
-        rejected = true;
-        if (h_ < h_min_) return StepStatus::kStepSizeCollapse;
-        continue;
-      }
-      double fac =
-          std::clamp(std::pow(std::max(err, 1e-300), 0.25) / kSafety, kFacMaxInv, kFacMinInv);
-      double h_next = h / fac;
-      if (err <= 1.0) {
-        // Gustafsson's predictive step control.
-        if (h_acc_ > 0.0) {
-          double facgus = (h_acc_ / h) * std::pow(err * err / err_acc_, 0.25) / kSafety;
-          facgus = std::clamp(facgus, kFacMaxInv, kFacMinInv);
-          fac = std::max(fac, facgus);
-          h_next = h / fac;
-        }
-        h_acc_ = h;
-        err_acc_ = std::max(1e-2, err);
-        if (rejected) h_next = std::min(h_next, h);
-        if (h < h_adapted && !rejected) h_next = std::max(h_next, h_adapted);
-        h_ = std::min(h_next, h_max_);
-        accept(sys, h, t_new);
-        return StepStatus::kOk;
-      }
-      ++counters_.steps_rejected;
-      rejected = true;
-      h_ = h_next;
-      if (h_ < h_min_) return StepStatus::kStepSizeCollapse;
-    }
+    return control_.step(
+        t_, t_limit, counters_, [&](double h, double t_new) { return attempt(sys, h, t_new); },
+        [&](double h, double t_new) { accept(sys, h, t_new); });
   }
 
   void dense(double t, Vec& y_out) const override {
@@ -150,7 +107,7 @@ class Rodas4Stepper final : public Stepper {
   double t() const override { return t_; }
   double t_prev() const override { return t_prev_; }
   const Vec& y() const override { return y_; }
-  double h() const override { return h_; }
+  double h() const override { return control_.h(); }
   const SolverCounters& counters() const override { return counters_; }
   SolverCounters& mutable_counters() override { return counters_; }
 
@@ -213,15 +170,7 @@ class Rodas4Stepper final : public Stepper {
     y_new_ += k6;
     counters_.rhs_evaluations += 5;
     if (!y_new_.allFinite() || !k6.allFinite()) return std::numeric_limits<double>::quiet_NaN();
-    if (sys.has_error_norm()) return sys.error_norm(k6, y_, y_new_, rtol_, atol_);
-    double sum = 0.0;
-    const Eigen::Index n = y_.size();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double sk = atol_ + rtol_ * std::max(std::abs(y_[i]), std::abs(y_new_[i]));
-      const double q = k6[i] / sk;
-      sum += q * q;
-    }
-    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+    return norm_(k6, y_, y_new_, rtol_, atol_);
   }
 
   void accept(const OdeSystem& sys, double h, double t_new) {
@@ -242,26 +191,16 @@ class Rodas4Stepper final : public Stepper {
   /// A cautious first step from the scale of f (Hairer's codes start at 1e-6 s
   /// without better information; the controller grows it quickly).
   double initial_step() const {
-    const Eigen::Index n = y_.size();
-    double dnf = 0.0, dny = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double sk = atol_ + rtol_ * std::abs(y_[i]);
-      dnf += (f0_[i] / sk) * (f0_[i] / sk);
-      dny += (y_[i] / sk) * (y_[i] / sk);
-    }
-    const double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : std::sqrt(dny / dnf) * 0.01;
-    return std::clamp(h, std::max(h_min_, 1e-10), h_max_);
+    const double h = StepSizeController::first_guess(y_, f0_, rtol_, atol_);
+    return std::clamp(h, std::max(control_.h_min(), 1e-10), control_.h_max());
   }
 
   double rtol_, atol_;
-  double h_max_, h_min_, h_initial_;  ///< step limits and first trial step [s]
-  double t_ = 0.0, t_prev_ = 0.0;     ///< current time, start of the last step [s]
-  double h_ = 0.0;                    ///< step the next attempt tries [s]
-  double h_last_ = 0.0;               ///< last accepted step; 0 after reset [s]
-  double h_acc_ = 0.0;                ///< previous accepted step (Gustafsson) [s]
-  double err_acc_ = 1e-2;             ///< previous accepted error (Gustafsson)
-  double h_factored_ = -1.0;          ///< h of the current factorisation [s]
-  bool h_chosen_ = false;
+  ErrorNorm norm_;
+  StepSizeController control_;     ///< the adapted step and its predictive control
+  double t_ = 0.0, t_prev_ = 0.0;  ///< current time, start of the last step [s]
+  double h_last_ = 0.0;            ///< last accepted step; 0 after reset [s]
+  double h_factored_ = -1.0;       ///< h of the current factorisation [s]
   bool jacobian_current_ = false;  ///< j_sparse_ belongs to (t_, y_)
   Vec y_, y_prev_, y_new_, y_tmp_;
   Vec f0_;  ///< f(t_, y_)
@@ -276,8 +215,8 @@ class Rodas4Stepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n) {
-  return std::make_unique<Rodas4Stepper>(options, n);
+std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n, ErrorNorm norm) {
+  return std::make_unique<Rodas4Stepper>(options, n, std::move(norm));
 }
 
 }  // namespace pronk::ode::detail

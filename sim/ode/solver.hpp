@@ -7,9 +7,12 @@
 #include <string>
 #include <string_view>
 
+#include "sim/ode/error_norm.hpp"
 #include "sim/ode/ode_system.hpp"
 
 namespace pronk::ode {
+
+class VerletInfo;
 
 /// The integration methods pronk offers.
 enum class Method {
@@ -24,7 +27,7 @@ enum class Method {
               ///< the system's analytic Jacobian with dense LU (sim/ode/cvode.cpp)
   kVerlet,    ///< velocity Verlet (Stormer-Verlet, kick-drift-kick), fixed step, order 2,
               ///< symplectic: one RHS per step, no energy drift on conservative mechanisms;
-              ///< only for systems with a mechanical split (pseudo-rigid mechanisms)
+              ///< only for MechanicalSystems (sim/ode/mechanical_system.hpp)
 };
 
 /// "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet".
@@ -42,11 +45,9 @@ struct SolverOptions {
   double h_fixed = 1e-3;  ///< step [s] of the fixed-step methods
   /// verlet only: 0 (default) takes every step at h_fixed. A positive budget [J] makes
   /// h_fixed the step of the output grid, each taken as 2^j equal sub-steps so that Verlet's
-  /// bounded energy term T_net (sum h^2 |F|^2 / 8 m_j of the force the dissipation does not
-  /// hold; the departure of the sampled energy from the exactly conserved modified energy)
-  /// stays within the budget: a sub-step whose T_net exceeds it is retried finer; grid points
-  /// coarsen by small switches or ones that undo the switching offset (verlet.cpp). Beyond
-  /// 4096 sub-steps or below h_min the budget is not kept. Needs OdeSystem::kinetic_energy().
+  /// bounded energy term T_net (VerletInfo::verlet_term) stays within the budget; beyond
+  /// 4096 sub-steps or below h_min it is not kept. Needs MechanicalSystem::kinetic_energy().
+  /// docs/pseudorigid.md, "Energy budget".
   double verlet_energy_budget = 0.0;
   double h_initial = 0.0;    ///< first trial step [s] of adaptive methods; 0 = automatic
   double h_max = 0.1;        ///< largest step [s]
@@ -57,13 +58,11 @@ struct SolverOptions {
   long max_steps = 100000000;
   /// Adaptive methods: the crawl guard. A run whose step attempts exceed
   /// kStepBudgetFloor + max_steps_per_second x (simulated time since it started) ends with a
-  /// reason instead of grinding on at tiny steps (a near-stall at a contact switch took
-  /// > 1e7 attempts and 900 s of wall time for 0.2 s). Normal runs use ~1e3-1e5 attempts per
-  /// simulated second. 0 turns the guard off. [1/s]
+  /// reason instead of grinding on at tiny steps (docs/pseudorigid.md, "Crawl guard"). 0 turns
+  /// the guard off. [1/s]
   double max_steps_per_second = 1e6;
   /// rodas4, radau5: systems with at most this many states factorise with dense LU,
-  /// larger ones with Eigen's SparseLU (crossover measured in bench_lu_crossover: sparse wins from
-  /// ~192 states).
+  /// larger ones with Eigen's SparseLU (the crossover: bench_lu_crossover, docs/pseudorigid.md).
   int dense_lu_max_dimension = 150;
 
   /// Checks every field; on failure writes "field: value: rule" into *error.
@@ -117,24 +116,14 @@ class Stepper {
   virtual const SolverCounters& counters() const = 0;
   /// Mutable counters (integrate() counts located events here).
   virtual SolverCounters& mutable_counters() = 0;
-  /// True when the stepper applies the system's dissipation split (OdeSystem::dissipate):
-  /// the energy it removed is then booked_dissipation(), not an integral of a power.
-  virtual bool books_dissipation() const { return false; }
-  /// Energy the dissipative updates removed since the stepper was made [J] (not reset by
-  /// reset()); 0 when books_dissipation() is false.
-  virtual double booked_dissipation() const { return 0.0; }
-  /// Verlet with a kinetic-energy metric (OdeSystem::kinetic_energy) and a dissipation split
-  /// or an energy budget: its bounded term at the current point,
-  /// T_net = sum h^2 |F + a F_d|^2 / 8 m [J] (see verlet.cpp), so that
-  /// energy - verlet_term() + booked_dissipation() - switching_offset() is constant for
-  /// quadratic potentials; 0 otherwise.
-  virtual double verlet_term() const { return 0.0; }
-  /// Verlet: the accumulated change of that invariant at step-size switches and restarts [J].
-  virtual double switching_offset() const { return 0.0; }
+  /// Method verlet's energy bookkeeping (sim/ode/verlet.hpp); null for the other methods.
+  virtual const VerletInfo* verlet_info() const { return nullptr; }
 };
 
-/// Creates the stepper of options.method for systems of dimension n.
-std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n);
+/// Creates the stepper of options.method for systems of dimension n. `norm`: the error norm
+/// of the adaptive methods (dopri5, rodas4, radau5) for the stepper's life; the others
+/// ignore it (cvode_bdf keeps CVODE's own weighted RMS norm).
+std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n, ErrorNorm norm = {});
 
 /// Why integrate() returned.
 /// kMaxSteps: the stepper's counters (accepted + rejected, since it was made) reached

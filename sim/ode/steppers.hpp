@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "sim/ode/error_norm.hpp"
 #include "sim/ode/solver.hpp"
 
 namespace pronk::ode::detail {
@@ -29,19 +30,19 @@ inline void hermite_dense(double t, double t0, double t1, const Vec& y0, const V
 std::unique_ptr<Stepper> make_explicit_rk_stepper(const SolverOptions& options, int n);
 
 /// Dormand-Prince 5(4) with error control, FSAL and Hairer's dense output.
-std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n);
+std::unique_ptr<Stepper> make_dopri5_stepper(const SolverOptions& options, int n, ErrorNorm norm);
 
 /// RODAS4 Rosenbrock method with error control and dense output.
-std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n);
+std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n, ErrorNorm norm);
 
 /// RADAU5 (Radau IIA, order 5) with simplified Newton, error control and dense output.
-std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n);
+std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n, ErrorNorm norm);
 
 /// SUNDIALS CVODE BDF (sim/ode/cvode.cpp): the system's analytic Jacobian with dense LU.
 std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n);
 
 /// Velocity Verlet with fixed step options.h_fixed [s] and cubic Hermite dense output;
-/// reset() throws std::invalid_argument for a system without a mechanical split.
+/// reset() throws std::invalid_argument for a system that is not an ode::MechanicalSystem.
 std::unique_ptr<Stepper> make_verlet_stepper(const SolverOptions& options, int n);
 
 }  // namespace pronk::ode::detail

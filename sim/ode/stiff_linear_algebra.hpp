@@ -12,6 +12,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "sim/ode/mechanical_system.hpp"
 #include "sim/ode/solver.hpp"
 
 namespace pronk::ode::detail {
@@ -44,7 +45,7 @@ inline void evaluate_jacobian(const OdeSystem& sys, double t, const Vec& y, cons
 /// LU factorisation of E = s I - J for a real or complex shift s, dense (partial
 /// pivoting, pivots checked: it never reports singularity itself) or sparse.
 ///
-/// Mechanical systems (OdeSystem::has_mechanical_split) whose position rows of J hold
+/// Mechanical systems (MechanicalSystem) whose position rows of J hold
 /// only dx/dt = W p (each position rate a fixed combination of momenta, e.g. p/m) are
 /// factorised through the momentum Schur complement instead: with J = [0 W; Fx Fp]
 /// (positions x, momenta p), E [a; b] = [r1; r2] reduces to
@@ -65,10 +66,11 @@ class ShiftedLu {
   void use_structure(const OdeSystem& sys) {
     if (structure_checked_) return;
     structure_checked_ = true;
-    if (!dense_ || !sys.has_mechanical_split()) return;
+    const auto* mechanical = dynamic_cast<const MechanicalSystem*>(&sys);
+    if (!dense_ || mechanical == nullptr) return;
     const int n = sys.dimension();
     Vec mask(n);
-    sys.momentum_mask(mask);
+    mechanical->momentum_mask(mask);
     kind_.assign(static_cast<size_t>(n), 0);
     pos_.clear();
     mom_.clear();

@@ -1,64 +1,34 @@
-// Velocity Verlet (Stormer-Verlet, kick-drift-kick) for mechanical systems
-// y = (q, p), dq/dt = G(p), dp/dt = F(t, q, p): fixed step, order 2, symplectic
-// and time-reversible when F does not depend on p, so a conservative mechanism's
-// energy error stays bounded (O((omega h)^2) for its fastest mode omega) instead
-// of drifting; linear and angular momentum are conserved exactly for pairwise
-// central forces. One full RHS per step (F at the new positions is also the
-// first kick of the next step) plus two cheap position_rate() calls.
-//
-// Systems with a dissipation split (OdeSystem::dissipate) take their dissipative
-// forces out of the kicks: each half kick of the other forces is followed by the
-// dissipative forces over h/2 at fixed positions, solved implicitly by the system, so
-// each half kick is a backward Euler step of the momenta (a Strang splitting with the
-// dissipation before the kicks let an undamped kick move a stuck foot: the creep and
-// the dissipation came out hc/2m times too large). Stiff dampers and regularised
-// friction then cost no stability (the step is limited by the springs alone), a creep
-// under a constant force has the exact speed F/c, the dissipated energy is booked so
-// that E - T + booked dissipation is exactly constant for quadratic potentials
-// (booked_dissipation(); T = sum h^2 |F|^2 / 8m, Verlet's bounded term), and without
-// dissipation the method is Verlet; the dissipation itself is first order. The dense
-// output's slopes are then those of the kicks' forces (without the dissipative ones).
-//
-// Otherwise velocity-dependent forces (dampers, friction, drag) make the closing
-// kick implicit in p; it is made explicit by evaluating F at the predicted momentum
-// p* = p_half + h/2 F_n, which keeps the method second order for them (it is no
-// longer symplectic then; nothing dissipative is).
-//
-// Booking with the held force: with the split, the exact booking makes E - T + D constant
-// with T built from the kicks' forces alone, so a foot held by friction against a spring
-// (kick force F, dissipative force -F, no motion) books every change of h^2 |F|^2 / 8m as
-// dissipation, though friction on a held foot does no work. The stepper moves the
-// difference between T and T_net = sum h^2 |F + a F_d|^2 / 8m from D to T at every point
-// (F_d: the closing half step's mean dissipative force; a in [0, 1] per mass, the share of
-// F_d that cancels F): the difference telescopes, so E - T_net + D stays exactly constant, T_net is
-// zero for a held foot and T in free motion or where a damper acts along F (a damper stopping an
-// impact), and D changes only by a bounded O(h^2) term.
-//
-// Energy budget (SolverOptions::verlet_energy_budget > 0): h_fixed becomes the grid step,
-// taken as 2^j equal sub-steps. The sampled energy balance departs from its exact value by
-// T_net at the current point plus, at every change of the sub-step h1 -> h2 at a point x,
-// T_net(h1, x) - T_net(h2, x). So a sub-step whose T_net exceeds the budget is retried on
-// the rung that brings it to half the budget (inside an impact; entered from flight, where
-// T_net is small, the switch costs little), and a grid point coarsens only by a switch that
-// is small (kDown of the budget, growing after kPatience grid steps on one rung) or that
-// brings the accumulated switching offset back towards zero. The quad hopper drop at
-// h_fixed = 5e-4 s: 1.5 % more steps, and its sampled balance within 1e-4 of the drop
-// energy instead of 4.4e-2.
-//
-// Stable for h < 2 / omega_max of the springs (and, without the split, of the
-// dampers); beyond that the energy grows without bound, and the callers'
-// divergence monitors end the run.
+// Velocity Verlet (Stormer-Verlet, kick-drift-kick) on a MechanicalSystem y = (q, p),
+// dq/dt = G(p), dp/dt = F(t, q, p): fixed step, order 2, symplectic and time-reversible when
+// F does not depend on p; one full RHS per step (F at the new positions is also the first
+// kick of the next step) plus two cheap position_rate() calls.
+// - With the system's dissipation split, each half kick is followed by the dissipative
+//   forces over h/2 at fixed positions, solved implicitly by the system (together a
+//   backward Euler half step of the momenta), and the dissipated energy is booked so that
+//   E - T + D is exactly constant for quadratic potentials (T = sum h^2 |F|^2 / 8m).
+// - Without it, velocity-dependent forces in the closing kick are evaluated at the
+//   predicted momentum p* = p_half + h/2 F_n (explicit, order 2, not symplectic).
+// - Booking with the held force: the difference between T and T_net = sum h^2 |F + a F_d|^2
+//   / 8m (a in [0, 1] per momentum block, the share of the dissipative force F_d that
+//   cancels F) moves from D to T at every point, so E - T_net + D stays exactly constant.
+// - Energy budget (SolverOptions::verlet_energy_budget): h_fixed is the grid step, taken as
+//   2^j sub-steps; a sub-step whose T_net exceeds the budget is retried finer, and grid
+//   points coarsen by small switches or ones that undo the switching offset.
+// Stable for h < 2 / omega_max of the springs. Why and how much: docs/pseudorigid.md,
+// "Solver: velocity Verlet".
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/ode/mechanical_system.hpp"
 #include "sim/ode/steppers.hpp"
+#include "sim/ode/verlet.hpp"
 
 namespace pronk::ode::detail {
 namespace {
 
-class VerletStepper final : public Stepper {
+class VerletStepper final : public Stepper, public VerletInfo {
  public:
   VerletStepper(const SolverOptions& options, int n)
       : h_fixed_(options.h_fixed),
@@ -81,12 +51,9 @@ class VerletStepper final : public Stepper {
         mask_(Vec::Zero(n)),
         q_mask_(Vec::Zero(n)) {}
 
-  void reset(const OdeSystem& sys, double t, const Vec& y) override {
+  void reset(const OdeSystem& system, double t, const Vec& y) override {
     assert(y.size() == y_.size());
-    if (!sys.has_mechanical_split()) {
-      throw std::invalid_argument(
-          "method verlet needs a mechanical system (positions and momenta); use rk4 or dopri5");
-    }
+    const MechanicalSystem& sys = take(system);
     sys.momentum_mask(mask_);
     split_ = sys.has_dissipation_split();
     drift_ = sys.has_drift();
@@ -135,8 +102,9 @@ class VerletStepper final : public Stepper {
     ++counters_.rhs_evaluations;
   }
 
-  StepStatus step(const OdeSystem& sys, double t_limit) override {
+  StepStatus step(const OdeSystem& system, double t_limit) override {
     if (!(t_limit > t_)) return StepStatus::kOk;
+    const MechanicalSystem& sys = &system == system_ ? *mechanical_ : take(system);
     if (remaining_ <= 0 || t_limit < t_grid_ - 1e-9 * h_fixed_) {
       // A new grid step (or the caller moved t_limit inside the current one): its end, on
       // the grid relative to the last base point (no accumulated round-off) or at t_limit.
@@ -237,6 +205,7 @@ class VerletStepper final : public Stepper {
   double h() const override { return h_fixed_ / substeps_; }
   const SolverCounters& counters() const override { return counters_; }
   SolverCounters& mutable_counters() override { return counters_; }
+  const VerletInfo* verlet_info() const override { return this; }
   bool books_dissipation() const override { return split_; }
   double booked_dissipation() const override { return dissipated_; }
   double verlet_term() const override { return 0.25 * h_last_ * h_last_ * k_net_; }
@@ -247,7 +216,7 @@ class VerletStepper final : public Stepper {
   /// forces at the new point in the momentum entries) and fd_new_ (the closing half step's
   /// mean dissipative force); returns the energy the dissipation split removed [J]. Leaves
   /// the accepted state untouched.
-  double kick_drift_kick(const OdeSystem& sys, double h, double t_new) {
+  double kick_drift_kick(const MechanicalSystem& sys, double h, double t_new) {
     t_new_ = t_new;
     double dissipated = 0.0;
     // Kick: p_half = p + h/2 F(q, p); positions unchanged. With the split, the dissipative
@@ -255,7 +224,7 @@ class VerletStepper final : public Stepper {
     // the momenta, so the positions drift with damped momenta.
     y_new_.noalias() = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
     if (split_) dissipated += sys.dissipate(t_, 0.5 * h, y_, y_new_);
-    // Drift: q_new = q + h G(p_half) (or the system's own flow, OdeSystem::drift).
+    // Drift: q_new = q + h G(p_half) (or the system's own flow, MechanicalSystem::drift).
     if (drift_) {
       sys.drift(h, y_new_);
     } else {
@@ -280,7 +249,7 @@ class VerletStepper final : public Stepper {
   }
 
   /// The net force f + a fd per momentum block (a mass's three components; see
-  /// OdeSystem::momentum_block), a in [0, 1] making |f + a fd| as small as the dissipative
+  /// MechanicalSystem::momentum_block), a in [0, 1] making |f + a fd| as small as the dissipative
   /// force fd allows: fd cancels the part of f it holds (friction holding a foot against a
   /// spring) and is ignored where it acts along f (a damper stopping an impact). Position
   /// entries of the result are not used.
@@ -303,7 +272,8 @@ class VerletStepper final : public Stepper {
 
   /// The kinetic energies [N^2/kg] of the held force f + a fd (*k_net; T_net = h^2/4 of it) and
   /// of f alone minus that (*k_gap) at a point with kicks' force f and dissipative force fd.
-  void net_terms(const OdeSystem& sys, const Vec& f, const Vec& fd, double* k_net, double* k_gap) {
+  void net_terms(const MechanicalSystem& sys, const Vec& f, const Vec& fd, double* k_net,
+                 double* k_gap) {
     if ((fd.array() == 0.0).all()) {  // nothing dissipative acted: T_net = T
       *k_net = sys.kinetic_energy(f);
       *k_gap = 0.0;
@@ -349,12 +319,25 @@ class VerletStepper final : public Stepper {
   }
 
   /// The kicks' forces: without the dissipative ones when the system splits them off.
-  void forces(const OdeSystem& sys, double t, const Vec& y, Vec& f) const {
+  void forces(const MechanicalSystem& sys, double t, const Vec& y, Vec& f) const {
     if (split_) {
       sys.conservative_rhs(t, y, f);
     } else {
       sys.rhs(t, y, f);
     }
+  }
+
+  /// The one place the stepper takes its system (at reset(), and at a step() on another
+  /// system than the last): a MechanicalSystem, or std::invalid_argument.
+  const MechanicalSystem& take(const OdeSystem& system) {
+    const auto* mechanical = dynamic_cast<const MechanicalSystem*>(&system);
+    if (mechanical == nullptr) {
+      throw std::invalid_argument(
+          "method verlet needs a mechanical system (positions and momenta); use rk4 or dopri5");
+    }
+    system_ = &system;
+    mechanical_ = mechanical;
+    return *mechanical;
   }
 
   /// Most sub-steps of one grid step (verlet_energy_budget); beyond it the budget is not kept.
@@ -400,6 +383,8 @@ class VerletStepper final : public Stepper {
   double offset_ = 0.0;         ///< accumulated change of E - T_net + D at step-size switches [J]
   double dissipated_ = 0.0;     ///< energy the dissipative halves removed [J]
   SolverCounters counters_;
+  const OdeSystem* system_ = nullptr;             ///< the system of the last take()
+  const MechanicalSystem* mechanical_ = nullptr;  ///< ... as a mechanical system
 };
 
 }  // namespace

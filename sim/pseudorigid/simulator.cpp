@@ -8,6 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "sim/ode/verlet.hpp"
+#include "sim/pseudorigid/solver_norm.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/run/hybrid_run.hpp"
 
@@ -46,75 +48,6 @@ constexpr double kEnergyDriftWarning = 1e-2;
 /// Estimated relative spin-rate error of a slender body above which the run warns.
 constexpr double kSpinErrorLimit = 1e-3;
 
-/// The mechanism as the solvers see it, with the `state` error norm made mass-aware:
-/// a momentum error counts as a velocity error (divided by its mass), so atol means metres
-/// for positions and metres per second for momenta whatever the masses. Without it a
-/// 1e-4 kg body's momenta (~1e-4 N s) sit below atol = 1e-8 N s in relative terms and its
-/// rotation went uncontrolled (omega error 2.6e-2 at rtol 1e-6; 3e-7 for 1 kg). For
-/// 1 kg masses this is exactly the solvers' default norm. The body norm is the system's own.
-class SolverView final : public ode::OdeSystem {
- public:
-  SolverView(const MechanismSystem& sys, const Mechanism& m) : sys_(sys), scale_(sys.dimension()) {
-    for (size_t j = 0; j < m.masses.size(); ++j) {
-      // A dummy mass (seed 4.3.2) only carries forces into its body: its momentum error
-      // counts at the scale of the body's own masses, not as a velocity of the tiny mass
-      // (which would resolve its stiff, energy-free vibration: 40x the steps at ratio 1e-6).
-      const int dummy_of = m.masses[j].dummy_of;
-      const double scale = dummy_of >= 0 ? 0.25 * m.bodies[dummy_of].mass : m.masses[j].mass;
-      scale_.segment<3>(6 * j).setOnes();
-      scale_.segment<3>(6 * j + 3).setConstant(scale);
-    }
-    for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b) {
-      // A rigid body: its quaternion as it is, its angular momentum as an angular velocity.
-      const int r = m.rotation_state(b);
-      if (r < 0) continue;
-      scale_.segment<4>(r).setOnes();
-      scale_.segment<3>(r + 4).setConstant(m.bodies[b].principal_moments.minCoeff());
-    }
-  }
-  int dimension() const override { return sys_.dimension(); }
-  void rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override { sys_.rhs(t, y, dydt); }
-  bool has_jacobian() const override { return sys_.has_jacobian(); }
-  void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& j) const override {
-    sys_.jacobian(t, y, j);
-  }
-  bool autonomous() const override { return sys_.autonomous(); }
-  bool has_mechanical_split() const override { return sys_.has_mechanical_split(); }
-  void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
-  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
-    sys_.position_rate(y, dydt);
-  }
-  double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
-  int momentum_block() const override { return sys_.momentum_block(); }
-  bool has_dissipation_split() const override { return sys_.has_dissipation_split(); }
-  bool has_drift() const override { return sys_.has_drift(); }
-  void drift(double h, ode::Vec& y) const override { sys_.drift(h, y); }
-  void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override {
-    sys_.conservative_rhs(t, y, dydt);
-  }
-  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override {
-    return sys_.dissipate(t, h, y_ref, y);
-  }
-  void correct_step(const ode::Vec& y0, ode::Vec& y1) const override { sys_.correct_step(y0, y1); }
-  bool has_error_norm() const override { return true; }
-  double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
-                    double atol) const override {
-    if (sys_.has_error_norm()) return sys_.error_norm(err, y0, y1, rtol, atol);
-    double sum = 0.0;
-    const Eigen::Index n = err.size();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double sk = atol * scale_[i] + rtol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-      const double q = err[i] / sk;
-      sum += q * q;
-    }
-    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-  }
-
- private:
-  const MechanismSystem& sys_;
-  ode::Vec scale_;  ///< atol multiplier per state: 1 for positions, the mass for momenta
-};
-
 /// Gauss-Legendre 3-point nodes and weights on [0, 1].
 const double kGaussNodes[3] = {0.5 - std::sqrt(15.0) / 10.0, 0.5, 0.5 + std::sqrt(15.0) / 10.0};
 const double kGaussWeights[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
@@ -129,7 +62,6 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
       : m_(m),
         opt_(m.simulation),
         sys_(sys),
-        view_(sys, m),
         out_(out),
         bps_(breakpoints(m)),
         yq_(sys.dimension()) {
@@ -154,10 +86,10 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
   }
   bool diverged() const { return diverged_; }
 
-  const ode::OdeSystem& system() const override { return view_; }
+  const ode::OdeSystem& system() const override { return sys_; }
   const ode::SolverOptions& integration_options() const override { return guards_off_; }
   void start(const ode::Stepper& stepper, const ode::Vec&) override {
-    booked_a_ = stepper.booked_dissipation();
+    booked_a_ = ode::booked_dissipation(stepper);
   }
   double segment_end(double) const override { return bps_[bi_]; }
   std::span<const ode::EventFunction* const> events() const override { return {}; }
@@ -205,12 +137,12 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
   }
   /// Adds the dissipation and actuator work over [ta, te] (te <= the step's end) to *d, *w:
   /// by Gauss-Legendre on the step's dense output, or, for a stepper that books the
-  /// dissipation itself (OdeSystem::dissipate; linear in time inside a step), from its books
+  /// dissipation itself (MechanicalSystem::dissipate; linear in time inside a step), from its books
   /// (the actuator work is then the only integral).
   void flows(const ode::Stepper& st, double te, double booked_b, double dissipated_a, double* d,
              double* w) {
     const double ta = st.t_prev(), tb = st.t();
-    const bool booked = st.books_dissipation();
+    const bool booked = ode::books_dissipation(st);
     if (booked) *d = dissipated_a + (booked_b - booked_a_) * (te - ta) / (tb - ta);
     if (!sys_.has_power_flows() || (booked && !sys_.has_actuator_work())) return;
     for (int q = 0; q < 3; ++q) {
@@ -225,7 +157,6 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
   const Mechanism& m_;
   const SimulationOptions& opt_;
   MechanismSystem& sys_;
-  const SolverView view_;
   RunSummary& out_;
   const std::vector<double> bps_;
   size_t bi_ = 0;  ///< the breakpoint the current segment ends at
@@ -280,7 +211,7 @@ void MechanismRun::on_step(const ode::Stepper& stepper, double) {
     diverge(buf);
     return;
   }
-  const double booked_b = stepper.booked_dissipation();
+  const double booked_b = ode::booked_dissipation(stepper);
   flows(stepper, tb, booked_b, dissipated_a, &dissipated_, &work_);
   const Energies eb = monitor(yb);
   while (next_out_ <= tb * (1.0 + 1e-12) && next_out_ <= opt_.t_end * (1.0 + 1e-12)) {
@@ -444,14 +375,15 @@ RunSummary simulate(const Mechanism& m) {
   const ode::Vec y = m.initial_state();
   if (m.simulation.check_jacobian) out.jacobian_check_error = jacobian_check(sys, 0.0, y);
   MechanismRun hybrid(m, sys, out);
-  auto stepper = ode::make_stepper(hybrid.begin(y), sys.dimension());
+  auto stepper = ode::make_stepper(hybrid.begin(y), sys.dimension(),
+                                   solver_norm(m, sys, /*mass_scaled=*/true));
   run::run_hybrid(hybrid, *stepper, 0.0, y);
   hybrid.finish(*stepper);
   // Warnings: near-degenerate bodies, the accuracy monitors against their budgets, and the
   // zero-length rule.
   warn_slender_bodies(m, out);
   warn_energy_drift(out, out.t.empty() ? 0.0 : hybrid.sample_drift(out.t.size() - 1),
-                    stepper->books_dissipation());
+                    ode::books_dissipation(*stepper));
   warn_budgets(m.simulation, out);
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

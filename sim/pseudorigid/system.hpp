@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "sim/ode/ode_system.hpp"
+#include "sim/ode/mechanical_system.hpp"
 #include "sim/pseudorigid/attitude.hpp"
 #include "sim/pseudorigid/energy.hpp"
 #include "sim/pseudorigid/inputs.hpp"
@@ -30,7 +30,7 @@ struct StateMonitors {
   double max_penetration = 0.0;  ///< deepest plane penetration or constraint violation [m]
 };
 
-class MechanismSystem final : public ode::OdeSystem {
+class MechanismSystem final : public ode::MechanicalSystem {
  public:
   /// With inputs of its own, as the Mechanism has them (a run that changes none).
   explicit MechanismSystem(const Mechanism& m);
@@ -42,12 +42,12 @@ class MechanismSystem final : public ode::OdeSystem {
   bool has_jacobian() const override { return true; }
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }  // time windows are handled by segment_time
-  bool has_error_norm() const override { return m_.simulation.error_norm == ErrorNorm::kBody; }
+  /// The body-level error norm (SimulationOptions::error_norm "body"; solver_norm.hpp hands
+  /// it to the adaptive steppers).
   double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
-                    double atol) const override;
+                    double atol) const;
 
   /// y = (x_j, p_j) per mass: dx/dt = p/m depends on the momenta only (method verlet).
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(ode::Vec& mask) const override;
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
   /// sum |p_j|^2 / 2 m_j [J] over the momentum entries of y.
@@ -65,7 +65,7 @@ class MechanismSystem final : public ode::OdeSystem {
   /// closed form, drag and regularised Coulomb friction by a monotone scalar solve. Every
   /// update conserves momentum and removes energy whatever h. Returns the energy to book
   /// as dissipated [J]: -sum_j dP_j . (v_ref_j + dP_j / 2 m_j) over the masses' momentum
-  /// changes dP_j, with v_ref the velocities of y_ref (see OdeSystem::dissipate).
+  /// changes dP_j, with v_ref the velocities of y_ref (see MechanicalSystem::dissipate).
   double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override;
   /// Grounded one-sided planes: a node that entered or left the contact during the step
   /// gets an impulse along the normal that makes the step's kinetic energy change match the

@@ -10,6 +10,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/math/rotation.hpp"
+#include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/pseudorigid/stability.hpp"
 #include "sim/reduced/run_record.hpp"
@@ -263,7 +264,7 @@ void book_hip_work(RobotMonitors& m, double dE) {
 }
 
 /// Energy flows, monitors and samples along the accepted steps. Method verlet books both
-/// flows as its steps do: the dissipation is the stepper's own (OdeSystem::dissipate), the
+/// flows as its steps do: the dissipation is the stepper's own (MechanicalSystem::dissipate), the
 /// actuator work 1/2 (F_a + F_b) . (x_b - x_a) over the masses with the actuator forces F at
 /// the step's ends (then E - T + D - W is exact for quadratic potentials, T Verlet's bounded
 /// term; docs/pseudorigid.md), both linear in time within a step. Other methods integrate
@@ -284,7 +285,7 @@ class Observer final : public ode::StepObserver {
     const double d_a = run_.dissipated, w_a = run_.work;
     double step_d = 0.0, step_w = 0.0;  // the whole step's flows (verlet) [J]
     if (verlet_) {
-      const double booked = st.booked_dissipation();
+      const double booked = ode::booked_dissipation(st);
       step_d = booked - booked_;
       booked_ = booked;
       step_w = verlet_work(st);
@@ -303,7 +304,7 @@ class Observer final : public ode::StepObserver {
     }
   }
   void start(const ode::Stepper& st, const ode::Vec& y) {
-    booked_ = st.booked_dissipation();
+    booked_ = ode::booked_dissipation(st);
     run_.sample(0.0, y, run_.dissipated, run_.work);
     next_ = interval_ * static_cast<double>(++count_);
   }
@@ -548,6 +549,7 @@ class RobotRun final : public run::HybridModel {
   /// The stepper's options (verlet's energy budget in joules).
   const ode::SolverOptions& solver() const { return solver_; }
   int dimension() const { return sys_.dimension(); }
+  ode::ErrorNorm error_norm() const { return sys_.error_norm(); }
   ode::Vec initial_state() const { return model_.mechanism.initial_state(); }
   /// Before the run: a run starting in the air places its legs for the first touchdown.
   void prepare(ode::Vec& y) {
@@ -1245,7 +1247,7 @@ RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& option
   const auto wall_start = std::chrono::steady_clock::now();
   const RobotModel model = build_robot(scene);
   auto robot = std::make_unique<RobotRun>(scene, model, options);
-  auto stepper = ode::make_stepper(robot->solver(), robot->dimension());
+  auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);
   const run::HybridEnd end = run::run_hybrid(*robot, *stepper, 0.0, y);

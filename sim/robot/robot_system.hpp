@@ -12,12 +12,13 @@
 
 #include <vector>
 
+#include "sim/pseudorigid/solver_norm.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 
 namespace pronk::robot {
 
-class RobotSystem final : public ode::OdeSystem {
+class RobotSystem final : public ode::MechanicalSystem {
  public:
   /// The mechanism is model.mechanism; `inputs` are the run's (hip placement and the foot
   /// switches change the leg rest lengths and slides there as the run goes).
@@ -29,15 +30,9 @@ class RobotSystem final : public ode::OdeSystem {
   bool has_jacobian() const override { return true; }
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }
-  bool has_error_norm() const override { return sys_.has_error_norm(); }
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
   void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
     sys_.position_rate(y, dydt);
-  }
-  double error_norm(const ode::Vec& err, const ode::Vec& y0, const ode::Vec& y1, double rtol,
-                    double atol) const override {
-    return sys_.error_norm(err, y0, y1, rtol, atol);
   }
   double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
   int momentum_block() const override { return sys_.momentum_block(); }
@@ -75,6 +70,11 @@ class RobotSystem final : public ode::OdeSystem {
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
+  /// The adaptive steppers' error norm: the mechanism's body norm or the plain state norm
+  /// (not mass-scaled, unlike a mechanism run's: pseudorigid::solver_norm).
+  ode::ErrorNorm error_norm() const {
+    return pseudorigid::solver_norm(model_.mechanism, sys_, /*mass_scaled=*/false);
+  }
   /// 3 per mass, plus 3 (the torque) with a rigid body.
   int actuator_force_size() const;
   /// Index of the rigid body's rotation states in y; -1 for the four-mass body.

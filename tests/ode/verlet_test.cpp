@@ -12,19 +12,22 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include "sim/ode/mechanical_system.hpp"
 #include "sim/ode/solver.hpp"
+#include "sim/ode/verlet.hpp"
 
 namespace {
 
 using pronk::ode::integrate;
 using pronk::ode::make_stepper;
+using pronk::ode::MechanicalSystem;
 using pronk::ode::Method;
 using pronk::ode::OdeSystem;
 using pronk::ode::SolverOptions;
 using pronk::ode::Vec;
 
 /// Damped oscillator m x'' = -k x - c x' as (x [m], p [N s]).
-class MassSpring final : public OdeSystem {
+class MassSpring final : public MechanicalSystem {
  public:
   MassSpring(double m, double k, double c) : m_(m), k_(k), c_(c) {}
   int dimension() const override { return 2; }
@@ -32,7 +35,6 @@ class MassSpring final : public OdeSystem {
     dydt[0] = y[1] / m_;
     dydt[1] = -k_ * y[0] - c_ * y[1] / m_;
   }
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(Vec& mask) const override {
     mask.resize(2);
     mask << 0.0, 1.0;
@@ -52,14 +54,13 @@ class MassSpring final : public OdeSystem {
 };
 
 /// A unit mass in the plane under the central force -r / |r|^3 (Kepler): (x, y, px, py).
-class Kepler final : public OdeSystem {
+class Kepler final : public MechanicalSystem {
  public:
   int dimension() const override { return 4; }
   void rhs(double, const Vec& y, Vec& dydt) const override {
     const double r3 = std::pow(y[0] * y[0] + y[1] * y[1], 1.5);
     dydt << y[2], y[3], -y[0] / r3, -y[1] / r3;
   }
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(Vec& mask) const override {
     mask.resize(4);
     mask << 0.0, 0.0, 1.0, 1.0;
@@ -67,11 +68,11 @@ class Kepler final : public OdeSystem {
   void position_rate(const Vec& y, Vec& dydt) const override { dydt.head<2>() = y.tail<2>(); }
 };
 
-/// m x'' = F - k x - c x' with the damper split off (OdeSystem::dissipate): backward Euler
+/// m x'' = F - k x - c x' with the damper split off (MechanicalSystem::dissipate): backward Euler
 /// of the damper over h, booked as the interface prescribes. (x [m], p [N s]).
-class SplitSpring final : public OdeSystem {
+class SplitSpring final : public MechanicalSystem {
  public:
-  /// metric: offers OdeSystem::kinetic_energy (the stepper then books with the held force).
+  /// metric: offers MechanicalSystem::kinetic_energy (the stepper then books with the held force).
   SplitSpring(double m, double k, double c, double f, bool metric = false)
       : m_(m), k_(k), c_(c), f_(f), metric_(metric) {}
   int dimension() const override { return 2; }
@@ -79,7 +80,6 @@ class SplitSpring final : public OdeSystem {
     dydt[0] = y[1] / m_;
     dydt[1] = f_ - k_ * y[0] - c_ * y[1] / m_;
   }
-  bool has_mechanical_split() const override { return true; }
   void momentum_mask(Vec& mask) const override {
     mask.resize(2);
     mask << 0.0, 1.0;
@@ -258,6 +258,10 @@ TEST_CASE("verlet refuses a system without positions and momenta", "[ode][verlet
   Vec y(1);
   y << 1.0;
   CHECK_THROWS_AS(s->reset(sys, 0.0, y), std::invalid_argument);
+  CHECK(s->verlet_info() != nullptr);
+  SolverOptions rk4 = verlet(0.1);
+  rk4.method = Method::kRk4;
+  CHECK(make_stepper(rk4, 1)->verlet_info() == nullptr);  // the bookkeeping is verlet's
   SolverOptions o = verlet(0.1);
   std::string err;
   CHECK(o.validate(&err));
@@ -279,18 +283,19 @@ TEST_CASE("verlet with a dissipation split closes the energy balance exactly", "
       Vec y(2);
       y << 0.05, 0.4;
       s->reset(sys, 0.0, y);
-      REQUIRE(s->books_dissipation());
+      REQUIRE(s->verlet_info()->books_dissipation());
       const double i0 = sys.energy(y) - sys.verlet_term(y, h);
       double worst = 0.0;
       for (int i = 0; i < 5000; ++i) {
         REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);
-        const double inv =
-            sys.energy(s->y()) - sys.verlet_term(s->y(), h) + s->booked_dissipation();
+        const double inv = sys.energy(s->y()) - sys.verlet_term(s->y(), h) +
+                           s->verlet_info()->booked_dissipation();
         worst = std::max(worst, std::abs(inv - i0));
       }
-      INFO("c = " << c << ", f = " << f << ": dissipated " << s->booked_dissipation());
+      INFO("c = " << c << ", f = " << f << ": dissipated "
+                  << s->verlet_info()->booked_dissipation());
       CHECK(worst < 1e-14 * (std::abs(i0) + 1.0));
-      CHECK(s->booked_dissipation() > 0.0);
+      CHECK(s->verlet_info()->booked_dissipation() > 0.0);
     }
   }
 }
@@ -309,19 +314,23 @@ TEST_CASE("verlet books with the held force: E - T_net + D is exact, T_net vanis
       y << 0.05, 0.4;
       s->reset(sys, 0.0, y);
       REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);  // from a closing half step on
-      const double i0 = sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
+      const double i0 =
+          sys.energy(s->y()) - sys.held_term(s->y(), h) + s->verlet_info()->booked_dissipation();
       double worst = 0.0, worst_term = 0.0;
       for (int i = 0; i < 5000; ++i) {
         REQUIRE(s->step(sys, 1e9) == pronk::ode::StepStatus::kOk);
-        const double inv = sys.energy(s->y()) - sys.held_term(s->y(), h) + s->booked_dissipation();
+        const double inv =
+            sys.energy(s->y()) - sys.held_term(s->y(), h) + s->verlet_info()->booked_dissipation();
         worst = std::max(worst, std::abs(inv - i0));
-        worst_term = std::max(worst_term, std::abs(s->verlet_term() - sys.held_term(s->y(), h)));
+        worst_term = std::max(worst_term,
+                              std::abs(s->verlet_info()->verlet_term() - sys.held_term(s->y(), h)));
       }
-      INFO("c = " << c << ", f = " << f << ": dissipated " << s->booked_dissipation());
+      INFO("c = " << c << ", f = " << f << ": dissipated "
+                  << s->verlet_info()->booked_dissipation());
       CHECK(worst < 1e-14 * (std::abs(i0) + 1.0));
       CHECK(worst_term < 1e-15 * (std::abs(i0) + 1.0));
       // Fixed step: the step sizes differ by round-off only.
-      CHECK(std::abs(s->switching_offset()) < 1e-14 * (std::abs(i0) + 1.0));
+      CHECK(std::abs(s->verlet_info()->switching_offset()) < 1e-14 * (std::abs(i0) + 1.0));
     }
   }
   // A mass pushed against the damper (no spring) creeps at F / c: the damper cancels the
@@ -334,10 +343,10 @@ TEST_CASE("verlet books with the held force: E - T_net + D is exact, T_net vanis
   y << 0.0, 0.0;
   s->reset(push, 0.0, y);
   for (int i = 0; i < 200; ++i) REQUIRE(s->step(push, 1e9) == pronk::ode::StepStatus::kOk);
-  CHECK(s->verlet_term() < 1e-20);
-  const double d0 = s->booked_dissipation();
+  CHECK(s->verlet_info()->verlet_term() < 1e-20);
+  const double d0 = s->verlet_info()->booked_dissipation();
   s->step(push, 1e9);
-  CHECK((s->booked_dissipation() - d0) / h == Approx(f * f / c).epsilon(1e-9));
+  CHECK((s->verlet_info()->booked_dissipation() - d0) / h == Approx(f * f / c).epsilon(1e-9));
 }
 
 TEST_CASE("verlet with an energy budget keeps E - T_net + D - offset exact through its switches",
@@ -353,8 +362,9 @@ TEST_CASE("verlet with an energy budget keeps E - T_net + D - offset exact throu
   Vec y(2);
   y << 0.05, 0.0;
   s->reset(sys, 0.0, y);
+  const pronk::ode::VerletInfo& v = *s->verlet_info();
   auto invariant = [&] {
-    return sys.energy(s->y()) - s->verlet_term() + s->booked_dissipation() - s->switching_offset();
+    return sys.energy(s->y()) - v.verlet_term() + v.booked_dissipation() - v.switching_offset();
   };
   const double i0 = invariant(), e0 = sys.energy(y);
   double worst = 0.0, worst_term = 0.0, limit = 0.0;
@@ -363,7 +373,7 @@ TEST_CASE("verlet with an energy budget keeps E - T_net + D - offset exact throu
     while (s->t() < limit) {
       REQUIRE(s->step(sys, limit) == pronk::ode::StepStatus::kOk);
       worst = std::max(worst, std::abs(invariant() - i0));
-      worst_term = std::max(worst_term, s->verlet_term());
+      worst_term = std::max(worst_term, v.verlet_term());
     }
     CHECK(s->t() == limit);
     if (call % 50 == 49) s->reset(sys, s->t(), s->y());  // restarts keep it exact too
@@ -380,7 +390,7 @@ TEST_CASE("verlet's held-force booking and energy budget do not depend on the fr
   // damper, the same motion in two frames rotated by 0.7 rad: with momentum blocks of two the
   // projection acts on the force vector, so steps, rejections and booked dissipation agree
   // to round-off.
-  class Rotated final : public OdeSystem {
+  class Rotated final : public MechanicalSystem {
    public:
     explicit Rotated(double angle) {
       r << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
@@ -391,7 +401,6 @@ TEST_CASE("verlet's held-force booking and energy budget do not depend on the fr
       conservative_rhs(t, y, dydt);
       dydt.tail<2>() -= c * y.tail<2>() / m;
     }
-    bool has_mechanical_split() const override { return true; }
     void momentum_mask(Vec& mask) const override {
       mask.resize(4);
       mask << 0.0, 0.0, 1.0, 1.0;
@@ -430,8 +439,8 @@ TEST_CASE("verlet's held-force booking and energy budget do not depend on the fr
     y.tail<2>() = sys.r * Eigen::Vector2d(0.0, 0.1);
     s->reset(sys, 0.0, y);
     while (s->t() < 4.0) REQUIRE(s->step(sys, 4.0) == pronk::ode::StepStatus::kOk);
-    return Run{s->counters().steps_accepted, s->counters().steps_rejected, s->booked_dissipation(),
-               sys.r.transpose() * s->y().head<2>()};
+    return Run{s->counters().steps_accepted, s->counters().steps_rejected,
+               s->verlet_info()->booked_dissipation(), sys.r.transpose() * s->y().head<2>()};
   };
   const Run a = run(0.0), b = run(0.7);
   CHECK(a.steps == b.steps);
@@ -455,9 +464,9 @@ TEST_CASE("verlet with a dissipation split creeps at F / c under a stiff damper"
   for (int i = 0; i < 200; ++i) REQUIRE(s->step(split, 1e9) == pronk::ode::StepStatus::kOk);
   CHECK(s->y()[1] / m == Approx(f / c).epsilon(1e-12));
   // Booked dissipation at the creep: the damper's power F^2 / c, per step.
-  const double d0 = s->booked_dissipation();
+  const double d0 = s->verlet_info()->booked_dissipation();
   s->step(split, 1e9);
-  CHECK((s->booked_dissipation() - d0) / h == Approx(f * f / c).epsilon(1e-9));
+  CHECK((s->verlet_info()->booked_dissipation() - d0) / h == Approx(f * f / c).epsilon(1e-9));
 
   const MassSpring unsplit(m, 0.0, c);
   auto u = make_stepper(verlet(h), 2);
@@ -465,7 +474,7 @@ TEST_CASE("verlet with a dissipation split creeps at F / c under a stiff damper"
   u->reset(unsplit, 0.0, y);
   for (int i = 0; i < 50; ++i) u->step(unsplit, 1e9);
   CHECK_FALSE(std::abs(u->y()[1]) < 1.0);  // |p| grew by 100^50 (or overflowed)
-  CHECK_FALSE(u->books_dissipation());
+  CHECK_FALSE(u->verlet_info()->books_dissipation());
 }
 
 TEST_CASE("verlet with a dissipation split converges to the damped oscillator", "[ode][verlet]") {

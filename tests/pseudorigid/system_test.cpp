@@ -12,6 +12,7 @@
 
 #include "app/bench_suite.hpp"
 #include "sim/io/mechanism_loader.hpp"
+#include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/system.hpp"
@@ -177,25 +178,25 @@ TEST_CASE("verlet: a damped, frictional, draggy connection keeps momentum and it
   s->reset(sys, 0.0, y);
   const Eigen::Vector3d p0 = momentum(y);
   const double e0 = sys.energies(y).total();
-  const double i0 = e0 - s->verlet_term(), j0 = e0 - kick_term(y);
-  const double gap0 = kick_term(y) - s->verlet_term();
+  const double i0 = e0 - s->verlet_info()->verlet_term(), j0 = e0 - kick_term(y);
+  const double gap0 = kick_term(y) - s->verlet_info()->verlet_term();
   double worst_p = 0.0, worst_e = 0.0, worst_kick = 0.0, worst_gap = 0.0;
   while (s->t() < m.simulation.t_end - 1e-12) {
     REQUIRE(s->step(sys, m.simulation.t_end) == pronk::ode::StepStatus::kOk);
     const pronk::ode::Vec& yi = s->y();
-    const double e = sys.energies(yi).total(), d = s->booked_dissipation();
+    const double e = sys.energies(yi).total(), d = s->verlet_info()->booked_dissipation();
     worst_p = std::max(worst_p, (momentum(yi) - p0).norm());
-    worst_e = std::max(worst_e, std::abs(e - s->verlet_term() + d - i0));
-    const double gap = kick_term(yi) - s->verlet_term();
+    worst_e = std::max(worst_e, std::abs(e - s->verlet_info()->verlet_term() + d - i0));
+    const double gap = kick_term(yi) - s->verlet_info()->verlet_term();
     worst_kick = std::max(worst_kick, std::abs(e - kick_term(yi) + (d + gap - gap0) - j0));
     worst_gap = std::max(worst_gap, gap);
   }
   INFO("worst |E - T_net + D - I0| " << worst_e << ", T - T_net up to " << worst_gap << " J");
   CHECK(worst_p < 1e-13);
   CHECK(worst_e < 1e-12 * i0);
-  CHECK(worst_kick < 1e-12 * i0);             // the same invariant through the kicks' term
-  CHECK(worst_gap > 1e-3 * i0);               // the damper does cancel part of the force at times
-  CHECK(s->booked_dissipation() > 0.5 * i0);  // the relative motion is damped out
+  CHECK(worst_kick < 1e-12 * i0);  // the same invariant through the kicks' term
+  CHECK(worst_gap > 1e-3 * i0);    // the damper does cancel part of the force at times
+  CHECK(s->verlet_info()->booked_dissipation() > 0.5 * i0);  // the relative motion is damped out
 }
 
 TEST_CASE("verlet: the dissipation split is not offered for a damped ghost under min_norm",
