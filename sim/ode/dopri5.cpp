@@ -33,12 +33,12 @@ constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700
 // Step-size control (Hairer's defaults): safety 0.9, h_new / h in [0.2, 10], PI (Lund
 // stabilisation) exponents.
 constexpr double kBeta = 0.04;
-const StepSizeController::Params kControl{.safety = 0.9,
-                                          .quot_min = 1.0 / 10.0,
-                                          .quot_max = 1.0 / 0.2,
-                                          .exponent = 0.2 - kBeta * 0.75,
-                                          .err_floor = 0.0,
-                                          .beta = kBeta};
+const StepSizeController::Params kDopri5Control{.safety = 0.9,
+                                                .quot_min = 1.0 / 10.0,
+                                                .quot_max = 1.0 / 0.2,
+                                                .exponent = 0.2 - kBeta * 0.75,
+                                                .err_floor = 0.0,
+                                                .beta = kBeta};
 
 class Dopri5Stepper final : public Stepper {
  public:
@@ -46,7 +46,7 @@ class Dopri5Stepper final : public Stepper {
       : rtol_(options.rtol),
         atol_(options.atol),
         norm_(std::move(norm)),
-        control_(kControl, options),
+        control_(kDopri5Control, options),
         y_(Vec::Zero(n)),
         y_prev_(Vec::Zero(n)),
         y_new_(Vec::Zero(n)),

@@ -78,12 +78,12 @@ constexpr double kSafe = 0.9;   ///< safety factor
 constexpr double kThet = 1e-3;  ///< Newton rate below which the Jacobian is reused
 /// h_new = h / clamp(err^(1/4) / fac, 1/8, 5) with fac <= kSafe by the Newton iterations
 /// taken, and Gustafsson's predictive controller; the error is at least 1e-10 already.
-const StepSizeController::Params kControl{.safety = kSafe,
-                                          .quot_min = 1.0 / 8.0,
-                                          .quot_max = 5.0,
-                                          .exponent = 0.25,
-                                          .err_floor = 0.0,
-                                          .predictive = true};
+const StepSizeController::Params kRadau5Control{.safety = kSafe,
+                                                .quot_min = 1.0 / 8.0,
+                                                .quot_max = 5.0,
+                                                .exponent = 0.25,
+                                                .err_floor = 0.0,
+                                                .predictive = true};
 constexpr double kQuot1 = 1.0, kQuot2 = 1.2;  ///< keep h (and the LU) if hnew/h is in here
 constexpr int kMaxFailures = 40;              ///< consecutive failed attempts before giving up
 
@@ -91,7 +91,7 @@ class Radau5Stepper final : public Stepper {
  public:
   Radau5Stepper(const SolverOptions& options, int n, ErrorNorm norm)
       : norm_(std::move(norm)),
-        control_(kControl, options),
+        control_(kRadau5Control, options),
         n_(n),
         lu1_(n <= options.dense_lu_max_dimension),
         lu2_(n <= options.dense_lu_max_dimension) {

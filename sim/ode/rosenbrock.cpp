@@ -44,12 +44,12 @@ constexpr double h31 = -0.6762803392801253, h32 = 6.087714651680015, h33 = 16.43
 
 // Step-size control (RODAS defaults): h_new = h / clamp(err^(1/4) / safety, 1/6, 5),
 // with Gustafsson's predictive controller after accepted steps.
-const StepSizeController::Params kControl{.safety = 0.9,
-                                          .quot_min = 1.0 / 6.0,
-                                          .quot_max = 5.0,
-                                          .exponent = 0.25,
-                                          .err_floor = 1e-300,
-                                          .predictive = true};
+const StepSizeController::Params kRodas4Control{.safety = 0.9,
+                                                .quot_min = 1.0 / 6.0,
+                                                .quot_max = 5.0,
+                                                .exponent = 0.25,
+                                                .err_floor = 1e-300,
+                                                .predictive = true};
 
 class Rodas4Stepper final : public Stepper {
  public:
@@ -57,7 +57,7 @@ class Rodas4Stepper final : public Stepper {
       : rtol_(options.rtol),
         atol_(options.atol),
         norm_(std::move(norm)),
-        control_(kControl, options),
+        control_(kRodas4Control, options),
         y_(Vec::Zero(n)),
         y_prev_(Vec::Zero(n)),
         y_new_(Vec::Zero(n)),
