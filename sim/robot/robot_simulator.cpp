@@ -930,17 +930,15 @@ double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
 /// The bottom of a spring stance: the armed actuators fire.
 void RobotRun::on_bottom(double t, const ode::Vec& y) {
   data_.armed = false;
-  if (prs_.thrust == scene::PseudoRigid::Thrust::kEnergy) {
-    const double stance_end = energy_thrust(t, y);
-    if (have_stride_) current_.stance_duration = stance_end - current_.t_touchdown;
-    set_actuators();
-    return;
-  }
   double stance_end = t;
-  for (size_t i = 0; i < legs_; ++i) {
-    data_.leg_force[i] = data_.armed_force[i];
-    data_.off_time[i] = t + data_.armed_duration[i];
-    if (data_.leg_force[i] != 0.0) stance_end = std::max(stance_end, data_.off_time[i]);
+  if (prs_.thrust == scene::PseudoRigid::Thrust::kEnergy) {
+    stance_end = energy_thrust(t, y);
+  } else {
+    for (size_t i = 0; i < legs_; ++i) {
+      data_.leg_force[i] = data_.armed_force[i];
+      data_.off_time[i] = t + data_.armed_duration[i];
+      if (data_.leg_force[i] != 0.0) stance_end = std::max(stance_end, data_.off_time[i]);
+    }
   }
   if (have_stride_) current_.stance_duration = stance_end - current_.t_touchdown;
   set_actuators();
