@@ -81,6 +81,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
   p.position_trim_gain = r.number_or("position_trim_gain", p.position_trim_gain, 0.0, 2.0);
+  p.attitude_trim_gain = r.number_or("attitude_trim_gain", p.attitude_trim_gain, 0.0, 2.0);
   p.thrust = r.choice_or("thrust", std::string(p.thrust == Thrust::kEnergy ? "energy" : "impulse"),
                          {"impulse", "energy"}) == "energy"
                  ? Thrust::kEnergy
@@ -146,6 +147,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"hop_trim_max", p.hop_trim_max},
             {"thrust", p.thrust == Thrust::kEnergy ? "energy" : "impulse"},
             {"position_trim_gain", p.position_trim_gain},
+            {"attitude_trim_gain", p.attitude_trim_gain},
             {"energy_blowup_factor", p.energy_blowup_factor},
             {"solver",
              {{"method", std::string(ode::to_string(so.method))},

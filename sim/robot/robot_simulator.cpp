@@ -476,6 +476,7 @@ struct RunData {
   double hop_trim = 0.0;   ///< hop-height feedback: extra takeoff speed asked [m/s]
   double apex_trim = 0.0;  ///< hop-height feedback of the energy thrust: extra apex asked [m]
   Vector3d position_trim = Vector3d::Zero();  ///< integral action: position offset seen [m]
+  Eigen::Vector2d attitude_trim = Eigen::Vector2d::Zero();  ///< integral action: roll, pitch [rad]
 };
 
 /// The same three control layers as the reduced models, planned as constant-force pulses
@@ -619,9 +620,15 @@ class RobotRun final : public run::HybridModel {
     have_stride_ = false;
   }
   void set_actuators() { sys_.set_actuators(data_.leg_force, data_.push); }
-  /// The body state the controller sees: the position offset by the integral action.
+  /// The body state the controller sees: position, roll and pitch offset by the integral
+  /// actions.
   control::BodyState trimmed(control::BodyState s) const {
     s.position.head<2>() += data_.position_trim.head<2>();
+    if (prs_.attitude_trim_gain > 0.0) {
+      s.euler123.head<2>() += data_.attitude_trim;
+      s.attitude = math::euler_to_quat(s.euler123, math::EulerSet::k123);
+      s.rotation = s.attitude.toRotationMatrix();
+    }
     return s;
   }
   void book_work(double e_before, const ode::Vec& y) {
@@ -856,9 +863,17 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
           data_.position_trim[k] + prs_.position_trim_gain * (s.position[k] - x_d[k]), -0.5, 0.5);
     }
   }
+  if (prs_.attitude_trim_gain > 0.0) {
+    for (int k = 0; k < 2; ++k) {
+      data_.attitude_trim[k] =
+          std::clamp(data_.attitude_trim[k] + prs_.attitude_trim_gain * s.euler123[k], -0.2, 0.2);
+    }
+  }
   const control::StancePlan plan =
       control::plan_stance(control_.context(t, false), touchdowns_, t, trimmed(s));
   current_ = reduced::open_stride(touchdowns_++, t, s, plan, scene_, result.run.warnings);
+  // The stance attitude feedback holds the tilt that the integral action has learnt.
+  sys_.set_stance_tilt(-data_.attitude_trim);
   have_stride_ = true;
   run_.stride_slip = 0.0;
   p_touchdown_ = total_momentum(y);

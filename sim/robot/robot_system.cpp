@@ -79,7 +79,7 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   const Vector3d w = R.transpose() * sys_.body_omega(model_.body, y);
   Eigen::Vector3d b(0.0, 0.0, 0.0);  // moment about body x, y [N m]; net push 0
   for (int k = 0; k < 2; ++k) {
-    b[k] = settings_.stance_kp[k] * tilt[k] - settings_.stance_kd[k] * w[k];
+    b[k] = settings_.stance_kp[k] * (tilt[k] + stance_tilt_[k]) - settings_.stance_kd[k] * w[k];
     // Smooth saturation at the moment limit.
     const double m = settings_.stance_max_moment;
     if (m > 0.0) b[k] = m * std::tanh(b[k] / m);

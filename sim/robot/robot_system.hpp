@@ -55,6 +55,9 @@ class RobotSystem final : public ode::MechanicalSystem {
     push_ = push;
   }
   const std::vector<double>& actuator_forces() const { return force_; }
+  /// The tilt the stance attitude feedback holds: roll and pitch [rad] (small angles, about
+  /// body x and y; 0 by default: level). The attitude integral action sets it per stride.
+  void set_stance_tilt(const Eigen::Vector2d& tilt) { stance_tilt_ = tilt; }
   /// Each leg's total actuator force at y [N]: the set force plus, for a grounded
   /// leg, the stance attitude feedback (settings stance_kp, stance_kd).
   std::vector<double> actuator_forces(const ode::Vec& y) const;
@@ -114,6 +117,7 @@ class RobotSystem final : public ode::MechanicalSystem {
   // directions, system and solution, and the Jacobian's perturbed state and triplets.
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
+  Eigen::Vector2d stance_tilt_ = Eigen::Vector2d::Zero();
   mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)
   mutable std::vector<Eigen::Vector3d> u_;
   mutable Eigen::MatrixXd A_;

@@ -173,6 +173,12 @@ struct PseudoRigid {
   /// would balance with a standing error (the full model's leaning legs under a moving
   /// setpoint) is learnt away; 0 = off [-].
   double position_trim_gain = 0.0;
+  /// Attitude feedback's integral action, per stride: at each touchdown the controller's
+  /// measured roll and pitch are offset by the running sum of gain x (roll, pitch) over the
+  /// touchdowns so far (within +-0.2 rad), so a steady moment bias (the full model's hip
+  /// placement and stance feedback under a moving setpoint) that the body controller's PD
+  /// would balance with a standing tilt is learnt away; 0 = off [-].
+  double attitude_trim_gain = 0.0;
   Thrust thrust = Thrust::kImpulse;
   /// Energy blow-up: a run whose energy balance drifts by more than this times the run's
   /// energy scale ends diverged. The mechanisms' setting (pseudorigid::SimulationOptions::
