@@ -11,9 +11,9 @@ namespace {
 
 const std::vector<std::string>& reduced_metric_names() {
   static const std::vector<std::string> names = {
-      "hop_height_error",  "x_error",    "y_error",        "attitude_error", "final_error",
-      "settle_strides",    "stabilized", "duty_max",       "duty_mean",      "peak_leg_force",
-      "effort_per_stride", "fell",       "spectral_radius"};
+      "hop_height_error",  "x_error",    "y_error",         "attitude_error", "final_error",
+      "settle_strides",    "stabilized", "duty_max",        "duty_mean",      "peak_leg_force",
+      "effort_per_stride", "fell",       "spectral_radius", "apex_held"};
   return names;
 }
 
@@ -85,17 +85,25 @@ std::string_view to_string(Aggregate a) {
   return "?";
 }
 
+namespace {
+constexpr long kApexHeldAfter = 5;          // strides 0-4 (the first five) are the transient
+constexpr double kApexHeldFraction = 0.03;  // of the target hop height h
+}  // namespace
+
 MetricMap scenario_metrics(const scene::Scene& scene, const RunResult& result, double fall_penalty,
                            const reduced::SettleCriteria& criteria) {
   const reduced::RunResult& run = result.run;
   const reduced::RunMetrics m = reduced::compute_metrics(scene, run, criteria);
   const double target_apex = scene.legs.length + scene.controller.hop_height;
-  double apex2 = 0, x2 = 0, y2 = 0, att2 = 0;
+  double apex2 = 0, x2 = 0, y2 = 0, att2 = 0, late_apex = 0;
   long n_apex = 0, n = 0;
   for (const auto& s : run.strides) {
     if (s.has_apex && s.index > 0) {
       apex2 += std::pow(s.apex_height - target_apex, 2);
       ++n_apex;
+    }
+    if (s.has_apex && s.index >= kApexHeldAfter) {
+      late_apex = std::max(late_apex, std::abs(s.apex_height - target_apex));
     }
     x2 += std::pow(s.position.x() - s.setpoint.x(), 2);
     y2 += std::pow(s.position.y() - s.setpoint.y(), 2);
@@ -120,6 +128,8 @@ MetricMap scenario_metrics(const scene::Scene& scene, const RunResult& result, d
   out["peak_leg_force"] = m.peak_leg_force;
   out["effort_per_stride"] = m.mean_impulse_per_stride;
   out["fell"] = fell ? 1.0 : 0.0;
+  out["apex_held"] =
+      (!fell && late_apex <= kApexHeldFraction * scene.controller.hop_height) ? 1.0 : 0.0;
   out["spectral_radius"] = 0.0;  // filled per design by the evaluator
   if (result.full_model()) add_full_metrics(scene, result, out);
   if (fell) {

@@ -25,6 +25,8 @@ namespace pronk::optimize {
 ///   effort_per_stride  mean delivered |P| per stride [N s]
 ///   fell               1 if the run fell or diverged, else 0
 ///   spectral_radius    of the stride map at the periodic orbit (a property of the design)
+///   apex_held          1 if the run did not fall and every apex after the fifth stride is
+///                      within 3 % of the target hop height h of l + h, else 0
 /// The full (pseudo-rigid) model adds its accuracy monitors and actuator costs:
 ///   energy_drift       max |energy balance(t) - balance(0)| / energy scale [-]
 ///   max_strain         largest internal spring strain [-]
