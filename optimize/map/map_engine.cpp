@@ -31,7 +31,7 @@ void apply_derived(const MapStudy& st, const double* values, scene::Scene& s) {
       case AxisKind::kPointer:
         break;
       case AxisKind::kDutyCycle:
-        s.pulse.duration = pulse_duration_for_duty(s, v);
+        apply_duty(s, v);
         break;
       case AxisKind::kTilt:
         s.initial.attitude =
@@ -89,8 +89,8 @@ scene::Scene scene_at(const MapStudy& st, double v0, double v1, scene::ModelKind
   } else {
     s = st.base_scene;
   }
+  s.model = model;  // first: what a duty axis sets depends on the model
   apply_derived(st, values, s);
-  s.model = model;
   return s;
 }
 

@@ -242,6 +242,33 @@ double pulse_duration_for_duty(const scene::Scene& s, double duty) {
   return duty * flight / (1.0 - duty);
 }
 
+DutySetting duty_setting(const scene::Scene& s) {
+  const std::vector<std::string> unused = io::unused_settings(s);
+  auto is_unused = [&unused](const char* p) {
+    return std::find(unused.begin(), unused.end(), p) != unused.end();
+  };
+  if (!is_unused("/pulse/duration")) return DutySetting::kPulseDuration;
+  if (s.model == scene::ModelKind::kPseudoRigid &&
+      s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring &&
+      !is_unused("/pseudo_rigid/leg_stiffness"))
+    return DutySetting::kLegStiffness;
+  return DutySetting::kNone;
+}
+
+double leg_stiffness_for_duty(const scene::Scene& s, double duty) {
+  const double T = pulse_duration_for_duty(s, duty);
+  const double n = static_cast<double>(std::max<size_t>(s.legs.hips.size(), 1));
+  return s.body.mass * M_PI * M_PI / (n * T * T);
+}
+
+void apply_duty(scene::Scene& s, double duty) {
+  if (duty_setting(s) == DutySetting::kLegStiffness) {
+    s.pseudo_rigid.leg_stiffness = leg_stiffness_for_duty(s, duty);
+  } else {
+    s.pulse.duration = pulse_duration_for_duty(s, duty);
+  }
+}
+
 namespace {
 
 // The scene: a path (relative to the study; a design.json gives its resolved scene) or an
@@ -311,17 +338,17 @@ void check_map_study_axes(const io::JsonReader& r, const std::string& file, cons
                            "\"duration\" (axis " + std::to_string(i) + " sets the pulse duration)",
                            "\"max_force\"");
     }
-    // A duty axis sets the pulse duration: a model that lists that very field unused (the full
-    // model's energy thrust times its own force) would give a flat, silently meaningless row.
+    // A duty axis sets the pulse duration, or the leg stiffness where the model times the
+    // thrust itself (apply_duty); a model that uses neither would give a flat, silently
+    // meaningless row.
     for (const scene::ModelKind m : st.models) {
       if (a.kind != AxisKind::kDutyCycle) break;
       scene::Scene s = st.base_scene;
       s.model = m;
-      const std::vector<std::string> unused = io::unused_settings(s);
-      if (std::find(unused.begin(), unused.end(), "/pulse/duration") != unused.end()) {
+      if (duty_setting(s) == DutySetting::kNone) {
         throw io::InputError(file, "/axes/" + std::to_string(i) + "/kind",
                              "an axis every model uses (the " + std::string(to_string(m)) +
-                                 " model ignores /pulse/duration)",
+                                 " model ignores /pulse/duration and the leg stiffness)",
                              "\"duty_cycle\"");
       }
     }

@@ -102,4 +102,18 @@ MapStudy parse_map_study(const nlohmann::json& doc, const std::string& file,
 /// The duty axis solves duty = T / (T + 2 sqrt(2h/g)) for T.
 double pulse_duration_for_duty(const scene::Scene& s, double duty);
 
+/// What a duty axis sets in a scene's model: the pulse duration T, or, where the model times
+/// the legs' thrust itself and lists /pulse/duration unused (the full model's spring legs on
+/// the energy thrust), the leg spring stiffness whose stance half-period pi sqrt(m / (n k))
+/// is that T. kNone: the model uses neither (a duty axis over it is refused).
+enum class DutySetting { kPulseDuration, kLegStiffness, kNone };
+DutySetting duty_setting(const scene::Scene& s);
+
+/// Leg stiffness [N/m] of n spring legs carrying the body mass m whose stance half-period
+/// pi sqrt(m / (n k)) is the pulse duration of `duty` (pulse_duration_for_duty).
+double leg_stiffness_for_duty(const scene::Scene& s, double duty);
+
+/// Sets what duty_setting(s) names for `duty`.
+void apply_duty(scene::Scene& s, double duty);
+
 }  // namespace pronk::optimize::map

@@ -75,19 +75,6 @@ TEST_CASE("map rejects bad input with exit 2 naming file and pointer", "[cli][ma
                       "\"pseudo_rigid\", found string \"pseudo-rigid\"",
                   0) == 0);
   CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
-  // A duty axis over a model that ignores the pulse duration (the energy thrust of spring legs).
-  doc = pronk::test::tiny_map_document();
-  doc["models"] = {"pulse", "pseudo_rigid"};
-  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "spring", "thrust": "energy"})");
-  doc["axes"] = {{{"kind", "duty_cycle"}, {"values", {0.1, 0.2}}}};
-  { std::ofstream(d.path + "/duty.json") << doc.dump(); }
-  CHECK(run(pronk_exe() + " map " + d.path + "/duty.json --out " + d.path + "/o", d.path, &err) ==
-        2);
-  CHECK(err.rfind("pronk: error: " + d.path +
-                      "/duty.json: /axes/0/kind: expected an axis every model uses (the "
-                      "pseudo_rigid model ignores /pulse/duration), found \"duty_cycle\"",
-                  0) == 0);
-  CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
   { std::ofstream(d.path + "/good.json") << pronk::test::tiny_map_document().dump(); }
   CHECK(run(pronk_exe() + " map " + d.path + "/good.json --set /trials/count=0", d.path, &err) ==
         2);

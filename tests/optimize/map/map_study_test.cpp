@@ -59,6 +59,38 @@ TEST_CASE("the duty axis sets T = duty x (T + 2 sqrt(2h/g))", "[map]") {
   }
 }
 
+TEST_CASE("the duty axis sets the leg stiffness where the full model times its own thrust",
+          "[map]") {
+  // Spring legs on the energy thrust: the pulse duration is unused in the full model, so the
+  // duty axis sets the leg spring whose stance half-period pi sqrt(m / (n k)) is the pulse
+  // model's T at that duty; the pulse model beside it still gets T.
+  json doc = pronk::test::tiny_map_document(2, 1, 6.0);
+  doc["models"] = {"pulse", "pseudo_rigid"};
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "spring", "thrust": "energy"})");
+  const m::MapStudy st = m::parse_map_study(doc, "s.json", ".");
+  for (double duty : {0.2, 0.4}) {
+    const pronk::scene::Scene full =
+        m::scene_at(st, duty, 0.0, pronk::scene::ModelKind::kPseudoRigid);
+    const pronk::scene::Scene pulse = m::scene_at(st, duty, 0.0, pronk::scene::ModelKind::kPulse);
+    CHECK(m::duty_setting(full) == m::DutySetting::kLegStiffness);
+    CHECK(m::duty_setting(pulse) == m::DutySetting::kPulseDuration);
+    const double T = m::pulse_duration_for_duty(st.base_scene, duty);
+    CHECK(pulse.pulse.duration == Approx(T).epsilon(1e-14));
+    const double k = full.pseudo_rigid.leg_stiffness;
+    const double n = static_cast<double>(full.legs.hips.size());
+    CHECK(M_PI * std::sqrt(full.body.mass / (n * k)) == Approx(T).epsilon(1e-12));
+    CHECK(full.pulse.duration == st.base_scene.pulse.duration);  // untouched
+  }
+  // The impulse thrust uses the pulse duration: the duty axis sets it, as for the pulse model.
+  doc["scene_overrides"].back() = R"(/pseudo_rigid={"legs": "spring", "thrust": "impulse"})";
+  const m::MapStudy st2 = m::parse_map_study(doc, "s.json", ".");
+  const pronk::scene::Scene full2 =
+      m::scene_at(st2, 0.3, 0.0, pronk::scene::ModelKind::kPseudoRigid);
+  CHECK(m::duty_setting(full2) == m::DutySetting::kPulseDuration);
+  CHECK(full2.pulse.duration == Approx(m::pulse_duration_for_duty(st2.base_scene, 0.3)));
+  CHECK(full2.pseudo_rigid.leg_stiffness == st2.base_scene.pseudo_rigid.leg_stiffness);
+}
+
 TEST_CASE("bad map studies name the file, the pointer, what was expected and found",
           "[map][input]") {
   json doc = pronk::test::tiny_map_document();
