@@ -185,6 +185,7 @@ class Loader {
     pr::AutoRequest request;
     request.accuracy = set.accuracy;
     request.h_max = o.solver.h_max;
+    request.t_end = o.t_end;
     loaded->method_choice = pr::choose_method(loaded->mechanism, request);
     pr::apply_choice(loaded->method_choice, &o.solver, &o.energy_tol);
   }

@@ -3,15 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace pronk::pseudorigid {
 
 namespace {
 
-constexpr double kVerletSafety = 0.8;       ///< fraction of Verlet's stability limit 2 / omega
+constexpr double kVerletSafety = 0.8;  ///< fraction of Verlet's stability limit 2 / omega
+/// The same with restarts at events, each of which adds an offset of O((omega h)^2).
+constexpr double kVerletSafetyRestarts = 0.7;
 constexpr double kVerletMinStep = 2e-5;     ///< below it, radau5 (rule 4) [s]
 constexpr double kTightAccuracy = 1e-6;     ///< below it, an implicit high-order method (rule 2)
 constexpr double kVerletBudgetShare = 0.5;  ///< of the accuracy, given to verlet's energy_tol
+constexpr double kBudgetLength = 2.0;       ///< runs longer than this get less budget [s]
+constexpr double kContactResolution = 0.7;
+/// An elastic contact this close to the stiffest mode makes the problem non-stiff (rule 5).
+constexpr double kContactDominates = 0.9;  ///< omega_c h of an elastic contact
 
 /// x rounded down to two significant digits (x > 0).
 double round_down_2(double x) {
@@ -59,21 +66,44 @@ MethodChoice adaptive(const SceneProbe& p, const AutoRequest& r, ode::Method m, 
   return c;
 }
 
-MethodChoice verlet(const SceneProbe& p, const AutoRequest& r, double h) {
+MethodChoice verlet(const SceneProbe& p, const AutoRequest& r, double h, const char* why) {
   MethodChoice c;
   c.method = ode::Method::kVerlet;
   c.h_fixed = h;
-  c.energy_tol = kVerletBudgetShare * r.accuracy;
+  c.energy_tol =
+      r.restarts ? 0.0 : kVerletBudgetShare * r.accuracy * std::min(1.0, kBudgetLength / r.t_end);
   c.accuracy = r.accuracy;
   c.probe = p;
-  c.rule = 5;
-  char buf[400];
+  c.rule = 6;
+  char buf[480];
   std::snprintf(buf, sizeof buf,
-                "auto: verlet h=%.2g s, energy_tol %.2g (0.8 x its stability limit 2/omega = "
-                "%.2g s; %s; energy budget %.2g)",
-                h, c.energy_tol, 2.0 / p.omega_max, scene_text(p).c_str(), r.accuracy);
+                "auto: verlet h=%.2g s, energy_tol %.2g (%s; %s; energy budget %.2g)", h,
+                c.energy_tol, why, scene_text(p).c_str(), r.accuracy);
   c.reason = buf;
   return c;
+}
+
+/// Verlet's step: 0.8 (0.7 with restarts) x its stability limit, or an elastic contact's ringing
+/// resolved.
+double verlet_step(const SceneProbe& p, const AutoRequest& r, std::string* why) {
+  const double safety = r.restarts ? kVerletSafetyRestarts : kVerletSafety;
+  const double stable = safety * 2.0 / p.omega_max;
+  const double contact =
+      p.omega_elastic_contact > 0.0 ? kContactResolution / p.omega_elastic_contact : stable;
+  char buf[160];
+  if (contact < stable) {
+    std::snprintf(buf, sizeof buf, "elastic contact resolved: 0.7/omega_c = %.2g s", contact);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.1f x its stability limit 2/omega = %.2g s", safety,
+                  2.0 / p.omega_max);
+  }
+  *why = buf;
+  double h = round_down_2(std::min(stable, contact));
+  if (h > r.h_max) {
+    h = r.h_max;
+    *why += ", capped at h_max";
+  }
+  return h;
 }
 
 }  // namespace
@@ -93,12 +123,17 @@ MethodChoice choose_method(const SceneProbe& p, const AutoRequest& r) {
     return adaptive(p, r, ode::Method::kRodas4, a / 10.0, 3,
                     "dampers on min_norm ghost points: no implicit dissipation for verlet");
   }
-  const double h = std::min(round_down_2(kVerletSafety * 2.0 / p.omega_max), r.h_max);
+  if (p.omega_elastic_contact >= kContactDominates * p.omega_max) {
+    return adaptive(p, r, ode::Method::kDopri5, a * 1e-4, 5,
+                    "the stiffest mode is an elastic contact that must be resolved: non-stiff");
+  }
+  std::string why;
+  const double h = verlet_step(p, r, &why);
   if (h < kVerletMinStep) {
     return adaptive(p, r, ode::Method::kRadau5, a / 100.0, 4,
                     "verlet would need > 5e4 steps per second: stiff, cost flat in k");
   }
-  return verlet(p, r, h);
+  return verlet(p, r, h, why.c_str());
 }
 
 MethodChoice choose_method(const Mechanism& m, const AutoRequest& request) {

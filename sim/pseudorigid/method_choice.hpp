@@ -13,9 +13,21 @@
 //   4. Verlet's step 0.8 x 2 / omega below 2e-5 s (more than 5e4 steps per simulated second;
 //      the satellite's cost crossover, bench: k = 1e8 N/m) -> radau5, whose cost is flat in
 //      the stiffness, rtol = atol = a / 100 (its estimate is looser per nominal tolerance).
-//   5. otherwise -> verlet, h_fixed = 0.8 x 2 / omega (rounded down to two digits, at most
-//      h_max), energy_tol = a / 2: impacts and other large forces are sub-stepped so that its
-//      bounded energy term stays within half the budget (docs/pseudorigid.md, "Energy budget").
+//   5. an elastic contact is the stiffest mode (omega_c >= 0.9 omega): its ringing must be
+//      resolved anyway, so the problem is not stiff (LSODA's test) -> dopri5,
+//      rtol = atol = a x 1e-4 (its energy drift on elastic impacts is ~3e3 x its tolerance:
+//      spring_leg_drop 2.9e-4 at 1e-7, 1.3e-3 at 1e-6).
+//   6. otherwise -> verlet, h_fixed = the smaller of 0.8 x 2 / omega (0.7 x with restarts)
+//      and, with an elastic
+//      contact (SceneProbe::omega_elastic_contact), 0.7 / omega_c (its ringing resolved: the
+//      elastic impacts' errors do not dissipate), rounded down to two digits, at most h_max;
+//      energy_tol = a / 2 x min(1, 2 s / t_end): impacts and other large forces are
+//      sub-stepped so that its bounded energy term stays within the budget, which shrinks
+//      with the run's length because the offsets of the sub-step switches add up over the
+//      impacts (docs/pseudorigid.md, "Energy budget"). For runs restarted at events (the
+//      robot: touchdowns, apexes, foot switches) energy_tol = 0: there the restart offsets
+//      of the sub-stepped scheme dominate (pr_running: 1.5e-3 with a budget of 5e-4,
+//      2e-4 without).
 // cvode_bdf is never chosen: its BDF above order 2 is not A-stable and gains energy on the
 // undamped vibrations of these models (docs/performance.md, quad hopper drop).
 #pragma once
@@ -31,7 +43,9 @@ namespace pronk::pseudorigid {
 struct AutoRequest {
   /// Largest sampled energy-balance drift allowed, relative to the run's energy scale.
   double accuracy = 1e-3;
-  double h_max = 0.1;  ///< the user's largest step [s]
+  double h_max = 0.1;     ///< the user's largest step [s]
+  double t_end = 1.0;     ///< the run's length [s]
+  bool restarts = false;  ///< the run restarts the integration at events (the robot)
 };
 
 /// What auto chose and why.
@@ -43,7 +57,7 @@ struct MethodChoice {
   double atol = 0.0;        ///< adaptive methods
   double accuracy = 0.0;    ///< the request's
   SceneProbe probe;
-  int rule = 0;        ///< which rule of the header chose (1..5)
+  int rule = 0;        ///< which rule of the header chose (1..6)
   std::string reason;  ///< one line: "auto: verlet h=1.3e-4 s (stiffest mode ...)"
 };
 

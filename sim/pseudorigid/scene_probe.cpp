@@ -191,6 +191,31 @@ bool has_dissipation_split(const Mechanism& m) {
   return true;
 }
 
+/// Inverse effective mass of node n [1/kg]: sum w_i^2 / m_i over the masses it moves.
+double inverse_mass(const Geometry& geo, const Mechanism& m, const NodeRef& n) {
+  std::vector<std::pair<int, double>> w;
+  geo.weights(n, 1.0, w);
+  double inv = 0.0;
+  for (const auto& [i, c] : w) inv += c * c / m.masses[static_cast<size_t>(i)].mass;
+  return inv;
+}
+
+/// The highest sqrt(k / m) of a node on an elastic one-sided plane (damping ratio < 0.1).
+double elastic_contact_frequency(const Mechanism& m) {
+  const Geometry geo(m);
+  double w2 = 0.0;
+  for (const Surface& s : m.surfaces) {
+    if (s.type != SurfaceType::kPlane || s.bilateral || !(s.stiffness > 0.0)) continue;
+    for (const NodeRef& n : s.nodes) {
+      const double inv = inverse_mass(geo, m, n);
+      if (!(inv > 0.0)) continue;
+      const double zeta = s.damping / (2.0 * std::sqrt(s.stiffness / inv));
+      if (zeta < 0.1) w2 = std::max(w2, s.stiffness * inv);
+    }
+  }
+  return std::sqrt(w2);
+}
+
 }  // namespace
 
 SceneProbe probe_scene(const Mechanism& m) {
@@ -199,6 +224,7 @@ SceneProbe probe_scene(const Mechanism& m) {
   p.springs = static_cast<int>(springs.size());
   p.omega_max = std::sqrt(std::max(0.0, largest_eigenvalue(springs, m)));
   p.omega_bound = max_frequency_bound(m);
+  p.omega_elastic_contact = elastic_contact_frequency(m);
   p.min_mass = m.masses.empty() ? 0.0 : m.masses.front().mass;
   for (const Mass& x : m.masses) p.min_mass = std::min(p.min_mass, x.mass);
   for (const Connection& c : m.connections) p.dissipation = p.dissipation || is_dissipative(c);

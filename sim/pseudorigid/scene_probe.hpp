@@ -19,6 +19,10 @@ struct SceneProbe {
   /// Gershgorin's upper bound on the same frequency (max_frequency_bound, stability.hpp),
   /// which ignores directions: omega_max <= omega_bound.
   double omega_bound = 0.0;
+  /// Highest frequency sqrt(k / m) of a node on an elastic one-sided plane (damping ratio
+  /// c / 2 sqrt(k m) below 0.1): a contact that rings, so each impact is a few periods of
+  /// it. 0 without one [rad/s].
+  double omega_elastic_contact = 0.0;
   double min_mass = 0.0;     ///< smallest point mass [kg]
   bool contact = false;      ///< a one-sided plane (ground or body-attached): non-smooth
   bool dissipation = false;  ///< dampers, friction or drag on a connection or surface

@@ -1252,6 +1252,8 @@ scene::Scene with_chosen_method(const scene::Scene& scene, RobotModel* model,
   pr::AutoRequest request;
   request.accuracy = p.accuracy;
   request.h_max = p.solver.h_max;
+  request.t_end = scene.simulation.duration;
+  request.restarts = true;  // touchdowns, apexes, foot switches
   *choice = pr::choose_method(model->mechanism, request);
   pr::apply_choice(*choice, &p.solver, &p.energy_tol);
   p.solver_auto = false;
