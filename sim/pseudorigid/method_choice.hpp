@@ -27,7 +27,7 @@
 //      impacts (docs/pseudorigid.md, "Energy budget"). For runs restarted at events (the
 //      robot: touchdowns, apexes, foot switches) energy_tol = 0: there the restart offsets
 //      of the sub-stepped scheme dominate (pr_running: 1.5e-3 with a budget of 5e-4,
-//      2e-4 without).
+//      6e-4 without at h = 1.2e-4 s).
 // cvode_bdf is never chosen: its BDF above order 2 is not A-stable and gains energy on the
 // undamped vibrations of these models (docs/performance.md, quad hopper drop).
 #pragma once
