@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_auto.hpp"
 #include "app/bench_headline.hpp"
 #include "app/bench_suite.hpp"
 #include "sim/io/atomic_file.hpp"
@@ -53,6 +54,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   cmd->add_option("--studies", args.studies_dir,
                   "The studies/ directory with the shipped scenes (default: the source tree's)");
   cmd->add_flag("--quiet,-q", args.quiet, "Print nothing on success");
+  cmd->add_option("--only", args.only,
+                  "Run one group only: \"auto\" (method auto against the fastest method at\n"
+                  "the same accuracy, per scene) into DIR/auto_check.json")
+      ->check(CLI::IsMember({"auto"}));
   return cmd;
 }
 
@@ -367,6 +372,7 @@ struct BenchResults {
   std::vector<FidelityPoint> ladder;
   bench::LadderRobustness robustness;
   json drop;
+  std::vector<bench::AutoCheck> autos;
   json cvode, mujoco;
   bool peer_failed = false;
 };
@@ -405,6 +411,8 @@ void run_bench_suites(const BenchArgs& args, const bench::BenchConfig& c, BenchR
   r->robustness = bench::ladder_robustness(c);
   progress(args, "quad hopper drop (pseudo-rigid)");
   r->drop = bench::quad_hopper_drop(c);
+  progress(args, "method auto against the fastest method per scene");
+  r->autos = bench::auto_check(c);
 }
 
 void run_bench_peers(const BenchArgs& args, const bench::BenchConfig& c, BenchResults* r) {
@@ -419,6 +427,54 @@ void run_bench_peers(const BenchArgs& args, const bench::BenchConfig& c, BenchRe
                       " --mechanism '" + quad + "' --drop 0.15");
   progress(args, "peer: MuJoCo");
   r->mujoco = run_peer("pronk_peer_mujoco", "libmujoco-dev", args, c.repeat, &r->peer_failed);
+}
+
+/// bench.json's "auto_check": per scene auto against the fastest run at the same accuracy.
+json auto_check_json(const std::vector<bench::AutoCheck>& autos) {
+  json j = {{"target_ratio", bench::kAutoRatioTarget}, {"scenes", json::array()}};
+  bool all = !autos.empty();
+  for (const auto& a : autos) {
+    j["scenes"].push_back(bench::to_json(a));
+    all = all && a.within;
+  }
+  j["all_within"] = all;
+  return j;
+}
+
+void print_auto_check(const std::vector<bench::AutoCheck>& autos) {
+  std::printf("method auto: CPU / the fastest setting meeting the same accuracy (target <= %g):\n",
+              bench::kAutoRatioTarget);
+  for (const auto& a : autos) {
+    std::string best = "none";
+    if (a.best >= 0) {
+      const bench::AutoRun& b = a.grid[static_cast<size_t>(a.best)];
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%s h %g et %g tol %g: %.4g s, drift %.2g", b.method.c_str(),
+                    b.h, b.energy_tol, b.tol, b.cpu_s, b.drift);
+      best = buf;
+    }
+    std::printf("  %-22s %5.2fx %s  auto %.4g s, drift %.2g (%s); best %s\n", a.scene.c_str(),
+                a.ratio, a.within ? "ok  " : "MISS", a.auto_run.cpu_s, a.auto_run.drift,
+                a.choice.c_str(), best.c_str());
+  }
+}
+
+/// `pronk bench --only auto`.
+int run_auto_only(const BenchArgs& args, const bench::BenchConfig& c) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<bench::AutoCheck> autos = bench::auto_check(c);
+  json doc = {{"benchmark", "pronk bench --only auto"},
+              {"commit", pronk::git_commit()},
+              {"date_utc", now_utc()},
+              {"machine", machine()},
+              {"quick", c.quick},
+              {"repeat", c.repeat},
+              {"auto_check", auto_check_json(autos)}};
+  doc["total_wall_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  io::write_file_atomic(args.out_dir + "/auto_check.json", doc.dump(2) + "\n");
+  if (!args.quiet) print_auto_check(autos);
+  return 0;
 }
 
 /// bench.json without its total wall time.
@@ -448,6 +504,7 @@ json bench_document(const bench::BenchConfig& c, const BenchResults& r,
   doc["quad_hopper_drop"] = r.drop;
   doc["peers"]["cvode"] = r.cvode;
   doc["peers"]["mujoco"] = r.mujoco;
+  doc["auto_check"] = auto_check_json(r.autos);
   doc["headline"] = headline(r.sat, r.sweep, r.drop, r.cvode, r.mujoco);
   return doc;
 }
@@ -594,6 +651,7 @@ void print_bench_summary(const bench::BenchConfig& c, const json& doc,
 
 int run_bench(const BenchArgs& args) {
   const bench::BenchConfig c = bench_config(args);
+  if (args.only == "auto") return run_auto_only(args, c);
   const auto t0 = std::chrono::steady_clock::now();
   BenchResults r;
   run_bench_suites(args, c, &r);
@@ -612,7 +670,10 @@ int run_bench(const BenchArgs& args) {
   io::write_file_atomic(dir + "/fidelity_ladder.csv", ladder_csv(r.ladder));
   io::write_file_atomic(dir + "/fidelity_robustness.csv", robustness_csv(r.robustness));
   write_bench_figures(dir, r);
-  if (!args.quiet) print_bench_summary(c, doc, r.robustness, dir);
+  if (!args.quiet) {
+    print_bench_summary(c, doc, r.robustness, dir);
+    print_auto_check(r.autos);
+  }
   return r.peer_failed ? 1 : 0;
 }
 

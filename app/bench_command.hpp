@@ -18,6 +18,9 @@ struct BenchArgs {
   bool no_peers = false;    ///< skip the peer executables even when built
   std::string studies_dir;  ///< the shipped studies/ directory; default: the source tree's
   bool quiet = false;
+  /// "" runs everything; "auto" only the check of "method": "auto" (bench_auto.hpp), into
+  /// DIR/auto_check.json (bench.json untouched).
+  std::string only;
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& args);

@@ -339,8 +339,39 @@ def section(d, figdir):
     for name, peer in (("cvode", cvd), ("mujoco", mjd)):
         if not peer.get("available"):
             L.append(f"Peer {name}: {peer.get('reason', 'not available')}.")
+    if "auto_check" in d:
+        L.append("")
+        L.extend(auto_lines(d["auto_check"]))
     L.append(END)
     return "\n".join(L)
+
+
+def run_setting(r):
+    if r["method"] == "verlet":
+        return f"verlet h {g(r['h'])} s" + (f", energy_tol {g(r['energy_tol'])}"
+                                             if r["energy_tol"] else "")
+    if r["method"] == "auto":
+        return "auto"
+    return f"{r['method']} tol {g(r['tol'])}"
+
+
+def auto_lines(a):
+    """The table of `"method": "auto"` against the fastest setting at the same accuracy."""
+    L = [f"**`\"method\": \"auto\"` against the fastest method** (per scene, the same run: auto's "
+         "CPU time over the fastest grid setting whose run completes with a sampled energy-balance "
+         f"drift within auto's accuracy; target ≤ {g(a['target_ratio'])}×; "
+         "[solvers.md](solvers.md)):", ""]
+    rows = []
+    for s in a["scenes"]:
+        best = s["best"]
+        rows.append([s["scene"], g(s["t_end"]), s["choice"].split(" (")[0].replace("auto: ", ""),
+                     ms(s["auto"]["cpu_s"]), g(s["auto"]["energy_drift_rel"]),
+                     run_setting(best) if best else "none",
+                     ms(best["cpu_s"]) if best else "", g(best["energy_drift_rel"]) if best else "",
+                     f"**{g(s['ratio'])}×**" + ("" if s["within"] else " (missed)")])
+    L.append(table(["scene", "t_end [s]", "auto chose", "auto CPU", "auto drift", "fastest",
+                    "its CPU", "its drift", "ratio"], rows))
+    return L
 
 
 def main():

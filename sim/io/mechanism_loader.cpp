@@ -6,6 +6,7 @@
 #include "sim/io/json_reader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/builder.hpp"
+#include "sim/pseudorigid/method_choice.hpp"
 
 namespace pronk::io {
 
@@ -26,6 +27,9 @@ const json* raw(const json& node, const std::string& key) {
   return it == node.end() ? nullptr : &*it;
 }
 
+/// The method of a scene that names none.
+constexpr const char* kDefaultMethod = "rodas4";
+
 class Loader {
  private:
   struct Settings {
@@ -35,6 +39,8 @@ class Loader {
     double strain_budget = 1e-4;
     double penetration_budget = 1e-4;  ///< [m]
     double load_factor = 10.0;
+    bool method_auto = false;  ///< "method": "auto" (method_choice.hpp)
+    double accuracy = pr::AutoRequest{}.accuracy;
   };
 
  public:
@@ -77,6 +83,8 @@ class Loader {
     std::string err;
     if (!m.validate(&err)) throw r.error("", "a consistent mechanism", err);
     resolve_stiffness(set, &out);
+    resolve_method(set, &out);
+    write_resolved_simulation(set, &out);
     return out;
   }
 
@@ -167,8 +175,27 @@ class Loader {
         }
       }
     }
+  }
+
+  /// "method": "auto": probes the built mechanism (stiffness resolved) and applies the choice.
+  static void resolve_method(const Settings& set, LoadedMechanism* loaded) {
+    loaded->method_auto = set.method_auto;
+    if (!set.method_auto) return;
+    pr::SimulationOptions& o = loaded->mechanism.simulation;
+    pr::AutoRequest request;
+    request.accuracy = set.accuracy;
+    request.h_max = o.solver.h_max;
+    request.t_end = o.t_end;
+    loaded->method_choice = pr::choose_method(loaded->mechanism, request);
+    pr::apply_choice(loaded->method_choice, &o.solver, &o.energy_tol);
+  }
+
+  /// The resolved document's "simulation": every setting explicit, "auto" replaced by the
+  /// chosen numbers (stiffness) and the chosen method and its step or tolerances.
+  static void write_resolved_simulation(const Settings& set, LoadedMechanism* loaded) {
+    LoadedMechanism& out = *loaded;
     json& sim = out.resolved["simulation"];
-    sim = simulation_json(m.simulation, set);
+    sim = simulation_json(out.mechanism.simulation, set);
     if (set.internal_auto && out.stiffness.internal_max > 0.0) {
       sim["internal_stiffness"] = out.stiffness.internal_max;
     }
@@ -180,6 +207,7 @@ class Loader {
     j["t_end"] = o.t_end;
     j["output_interval"] = o.output_interval;
     j["method"] = std::string(ode::to_string(o.solver.method));
+    j["accuracy"] = s.accuracy;
     j["rtol"] = o.solver.rtol;
     j["atol"] = o.solver.atol;
     j["h_fixed"] = o.solver.h_fixed;
@@ -230,12 +258,14 @@ class Loader {
           "output_interval", "at most 1e7 output samples (t_end / output_interval)",
           std::to_string(o->output_interval) + " s for t_end " + std::to_string(o->t_end) + " s");
     }
-    const std::string method =
-        s.choice_or("method", "rodas4",
-                    {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
-    if (!ode::parse_method(method, &o->solver.method)) {
+    const std::string method = s.choice_or(
+        "method", kDefaultMethod,
+        {"auto", "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
+    set->method_auto = method == "auto";
+    if (!set->method_auto && !ode::parse_method(method, &o->solver.method)) {
       throw s.error("method", "a solver name", method);
     }
+    set->accuracy = s.number_or("accuracy", set->accuracy, pr::kMinAccuracy, pr::kMaxAccuracy);
     o->solver.rtol = s.positive_or("rtol", o->solver.rtol);
     o->solver.atol = s.positive_or("atol", o->solver.atol);
     o->solver.h_fixed = s.positive_or("h_fixed", o->solver.h_fixed);

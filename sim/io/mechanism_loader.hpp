@@ -24,16 +24,19 @@
 //                "t_start" [s], "t_end" [s]}]
 //   "actuators": [{"name", "type": "impulse", "node", "body", "direction", "force" [N],
 //                "impulse" [N s], "t_start" [s]}]
-//   "simulation": {"t_end", "output_interval" [s], "method": euler|rk2|rk4|dopri5|rodas4|radau5|
-//                verlet, "rtol", "atol", "h_fixed", "h_initial", "h_max", "h_min" [s], "max_steps",
-//                "energy_tol" (verlet: bound on its bounded energy term per step, relative to
-//                the run's energy scale; sub-steps h_fixed where needed; 0 = off),
-//                "max_steps_per_second" [1/s] (crawl guard, 0 = off),
-//                "dense_lu_max_dimension", "error_norm": "state"|"body", "euler_set": "123"|"313",
-//                "energy_blowup_factor", "check_jacobian", "zero_length_epsilon" [m],
-//                "ghost_transfer": "barycentric" (default, conservative) or "min_norm",
-//                "internal_stiffness": N/m or "auto", "contact_stiffness": N/m or "auto",
-//                "strain_budget", "penetration_budget" [m], "load_factor"}
+//   "simulation": {"t_end", "output_interval" [s], "method": auto|euler|rk2|rk4|dopri5|rodas4|
+//                radau5|cvode_bdf|verlet (default rodas4; auto: method_choice.hpp picks the
+//                method and its step or tolerances, replacing rtol/atol or h_fixed/energy_tol),
+//                "accuracy" (auto's target: largest sampled energy-balance drift relative to
+//                the energy scale, 1e-12..0.5, default 1e-3; ignored by the other methods), "rtol",
+//                "atol", "h_fixed", "h_initial", "h_max", "h_min" [s], "max_steps", "energy_tol"
+//                (verlet: bound on its bounded energy term per step, relative to the run's energy
+//                scale; sub-steps h_fixed where needed; 0 = off), "max_steps_per_second" [1/s]
+//                (crawl guard, 0 = off), "dense_lu_max_dimension", "error_norm": "state"|"body",
+//                "euler_set": "123"|"313", "energy_blowup_factor", "check_jacobian",
+//                "zero_length_epsilon" [m], "ghost_transfer": "barycentric" (default, conservative)
+//                or "min_norm", "internal_stiffness": N/m or "auto", "contact_stiffness": N/m or
+//                "auto", "strain_budget", "penetration_budget" [m], "load_factor"}
 #pragma once
 
 #include <string>
@@ -41,6 +44,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/io/input_error.hpp"
+#include "sim/pseudorigid/method_choice.hpp"
 #include "sim/pseudorigid/model.hpp"
 #include "sim/pseudorigid/stiffness.hpp"
 
@@ -51,6 +55,8 @@ struct LoadedMechanism {
   pseudorigid::Mechanism mechanism;
   pseudorigid::StiffnessChoice stiffness;  ///< what "auto" chose (zeros when not auto)
   bool internal_auto = false, contact_auto = false;
+  bool method_auto = false;                 ///< "method": "auto"
+  pseudorigid::MethodChoice method_choice;  ///< what auto chose (when method_auto)
   /// The input document with every simulation setting explicit and "auto"
   /// stiffnesses replaced by the chosen numbers: loading it gives the same mechanism.
   nlohmann::json resolved;

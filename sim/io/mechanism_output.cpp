@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/method_choice_output.hpp"
 #include "sim/io/plot.hpp"
 #include "sim/io/run_output.hpp"
 #include "sim/math/rotation.hpp"
@@ -218,6 +219,9 @@ json mechanism_summary_json(const LoadedMechanism& scene, const pr::RunSummary& 
   if (scene.contact_auto) st["contact_N_per_m"] = scene.stiffness.contact;
   if (scene.internal_auto || scene.contact_auto) st["note"] = scene.stiffness.note;
   j["stiffness"] = st;
+  if (scene.method_auto) {
+    add_method_choice(scene.method_choice, run.energy_drift / run.energy_scale, &j);
+  }
   if (!run.t.empty()) {
     const pr::Energies& e = run.energies.back();
     j["final"] = {{"t", run.t.back()},

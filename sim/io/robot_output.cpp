@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/method_choice_output.hpp"
 #include "sim/io/plot.hpp"
 #include "sim/io/robot_settings.hpp"
 
@@ -82,6 +83,13 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
       {"internal_stiffness_N_per_m", m.internal_stiffness},
       {"contact_stiffness_N_per_m", m.contact_stiffness},
       {"stiffness_note", m.stiffness.note}};
+  if (m.method_auto) {
+    const pseudorigid::MethodChoice& c = m.method_choice;
+    j["solver"] = {{"method", std::string(ode::to_string(c.method))},
+                   {"rtol", c.method == ode::Method::kVerlet ? so.rtol : c.rtol},
+                   {"atol", c.method == ode::Method::kVerlet ? so.atol : c.atol}};
+    add_method_choice(c, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, &j);
+  }
   if (pulse != nullptr) {
     j["pseudo_rigid"]["discrepancy_vs_pulse_model"] = {
         {"strides_compared", pulse->strides},

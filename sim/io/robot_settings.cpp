@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sim/pseudorigid/method_choice.hpp"
+
 namespace pronk::io {
 
 using json = nlohmann::json;
@@ -90,10 +92,13 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   if (r.has("solver")) {
     JsonReader o = r.object("solver");
     auto& so = p.solver;
-    const std::string method =
-        o.choice_or("method", std::string(ode::to_string(so.method)),
-                    {"euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
-    ode::parse_method(method, &so.method);
+    const std::string method = o.choice_or(
+        "method", p.solver_auto ? "auto" : std::string(ode::to_string(so.method)),
+        {"auto", "euler", "rk2", "rk4", "dopri5", "rodas4", "radau5", "cvode_bdf", "verlet"});
+    p.solver_auto = method == "auto";
+    if (!p.solver_auto) ode::parse_method(method, &so.method);
+    p.accuracy =
+        o.number_or("accuracy", p.accuracy, pseudorigid::kMinAccuracy, pseudorigid::kMaxAccuracy);
     so.rtol = o.positive_or("rtol", so.rtol);
     so.atol = o.positive_or("atol", so.atol);
     so.h_fixed = o.positive_or("h_fixed", so.h_fixed);
@@ -119,6 +124,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
 
 json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
   const auto& so = p.solver;
+  const std::string method = p.solver_auto ? "auto" : std::string(ode::to_string(so.method));
   json j = {{"hips", p.hips == scene::PseudoRigid::Hips::kDummy ? "dummy_masses" : "ghost_points"},
             {"body", p.body == scene::PseudoRigid::BodyKind::kRigid ? "rigid" : "four_masses"},
             {"dummy_ratio", p.dummy_ratio},
@@ -150,7 +156,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"attitude_trim_gain", p.attitude_trim_gain},
             {"energy_blowup_factor", p.energy_blowup_factor},
             {"solver",
-             {{"method", std::string(ode::to_string(so.method))},
+             {{"method", method},
               {"rtol", so.rtol},
               {"atol", so.atol},
               {"h_fixed", so.h_fixed},
@@ -162,6 +168,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"max_steps_per_second", so.max_steps_per_second},
               {"energy_tol", p.energy_tol}}}};
   // "auto" stays "auto" in the resolved scene: the choice depends on the run.
+  if (p.solver_auto) j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
   return j;
@@ -208,7 +215,12 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
           out.push_back("/pseudo_rigid/internal_damping");
         }
       }
-      if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
+      if (s.pseudo_rigid.solver_auto) {
+        // auto chooses the method with its step or tolerances and verlet's energy budget.
+        for (const char* k : {"rtol", "atol", "h_fixed", "energy_tol"}) {
+          out.push_back(std::string("/pseudo_rigid/solver/") + k);
+        }
+      } else if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
         out.push_back("/pseudo_rigid/solver/energy_tol");  // verlet's energy budget
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {

@@ -1256,10 +1256,39 @@ void RobotRun::finish(double t, const ode::Vec& y, const ode::Stepper& stepper) 
 
 }  // namespace
 
-RobotRunResult simulate(const scene::Scene& scene, const RobotRunOptions& options) {
+namespace {
+
+/// "method": "auto": the scene with the method chosen for its built robot (model's solver
+/// updated as build_robot sets it); the choice in *choice.
+scene::Scene with_chosen_method(const scene::Scene& scene, RobotModel* model,
+                                pr::MethodChoice* choice) {
+  scene::Scene chosen = scene;
+  scene::PseudoRigid& p = chosen.pseudo_rigid;
+  pr::AutoRequest request;
+  request.accuracy = p.accuracy;
+  request.h_max = p.solver.h_max;
+  request.t_end = scene.simulation.duration;
+  request.restarts = true;  // touchdowns, apexes, foot switches
+  *choice = pr::choose_method(model->mechanism, request);
+  pr::apply_choice(*choice, &p.solver, &p.energy_tol);
+  p.solver_auto = false;
+  model->mechanism.simulation.solver = p.solver;
+  return chosen;
+}
+
+}  // namespace
+
+RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const RobotModel model = build_robot(scene);
+  RobotModel model = build_robot(scene_in);
+  pr::MethodChoice choice;
+  const bool automatic = scene_in.pseudo_rigid.solver_auto;
+  scene::Scene chosen;  // the scene with auto's choice (no copy otherwise)
+  if (automatic) chosen = with_chosen_method(scene_in, &model, &choice);
+  const scene::Scene& scene = automatic ? chosen : scene_in;
   auto robot = std::make_unique<RobotRun>(scene, model, options);
+  robot->result.monitors.method_auto = automatic;
+  robot->result.monitors.method_choice = choice;
   auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);

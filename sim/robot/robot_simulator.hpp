@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sim/pseudorigid/energy.hpp"
+#include "sim/pseudorigid/method_choice.hpp"
 #include "sim/pseudorigid/stiffness.hpp"
 #include "sim/reduced/run_result.hpp"
 #include "sim/scene/scene.hpp"
@@ -51,6 +52,8 @@ struct RobotMonitors {
   long zero_length_triggers = 0;
   pseudorigid::StiffnessChoice stiffness;                    ///< what "auto" chose
   double internal_stiffness = 0.0, contact_stiffness = 0.0;  ///< used [N/m]
+  bool method_auto = false;                                  ///< the scene's solver was "auto"
+  pseudorigid::MethodChoice method_choice;                   ///< what it chose (when method_auto)
 };
 
 struct RobotRunResult {

@@ -194,6 +194,13 @@ struct PseudoRigid {
   /// relative to the run's energy scale (solver.verlet_energy_budget = energy_tol x scale,
   /// sub-stepping the impacts); 0 = off. [-]
   double energy_tol = 0.0;
+  /// "solver": {"method": "auto"}: the run chooses the method and its step or tolerances
+  /// from its mechanism (sim/pseudorigid/method_choice.hpp); `solver` then holds the rest
+  /// (h_max, max_steps, ...). Not the default: the shipped results are on rodas4.
+  bool solver_auto = false;
+  /// auto's target: the largest sampled energy-balance drift, relative to the run's energy
+  /// scale ("solver": {"accuracy"}) [-].
+  double accuracy = 1e-3;
   static ode::SolverOptions default_solver() {
     ode::SolverOptions s;
     s.method = ode::Method::kRodas4;

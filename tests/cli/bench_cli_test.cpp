@@ -88,6 +88,17 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
   CHECK(fs::file_size(dir / "out/fidelity_ladder.csv") > 100);
   CHECK(fs::exists(dir / "out/satellite_work_precision.gp"));
   CHECK(fs::exists(dir / "out/hopper_work_precision.gp"));
+  // method auto against the grid: every shipped mechanism scene, the quad hopper and
+  // pr_running, auto's run meets its accuracy (timings are not checked).
+  const json& autos = doc["auto_check"]["scenes"];
+  CHECK(autos.size() == 7);
+  for (const json& a : autos) {
+    INFO(a["scene"]);
+    CHECK(a["auto"]["meets"] == true);
+    CHECK_THAT(a["choice"].get<std::string>(), Catch::Matchers::StartsWith("auto: "));
+    CHECK(a["best"].is_object());
+    CHECK(a["ratio"].get<double>() > 0.0);
+  }
 
   // CSV: one row per work-precision point, same column count everywhere.
   {

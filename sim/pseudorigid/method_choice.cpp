@@ -1,0 +1,154 @@
+#include "sim/pseudorigid/method_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace pronk::pseudorigid {
+
+namespace {
+
+constexpr double kVerletSafety = 0.8;  ///< fraction of Verlet's stability limit 2 / omega
+/// The same with restarts at events, each of which adds an offset of O((omega h)^2).
+constexpr double kVerletSafetyRestarts = 0.7;
+constexpr double kVerletMinStep = 2e-5;     ///< below it, radau5 (rule 4) [s]
+constexpr double kTightAccuracy = 1e-6;     ///< below it, an implicit high-order method (rule 2)
+constexpr double kVerletBudgetShare = 0.5;  ///< of the accuracy, given to verlet's energy_tol
+constexpr double kBudgetLength = 2.0;       ///< runs longer than this get less budget [s]
+constexpr double kContactResolution = 0.7;
+/// An elastic contact this close to the stiffest mode makes the problem non-stiff (rule 5).
+constexpr double kContactDominates = 0.9;  ///< omega_c h of an elastic contact
+
+/// x rounded down to two significant digits (x > 0).
+double round_down_2(double x) {
+  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+  return std::floor(x / scale * (1.0 + 1e-12)) * scale;
+}
+
+/// "1.2e4 rad/s (1.9 kHz)".
+std::string frequency_text(double omega) {
+  char buf[80];
+  const double hz = omega / (2.0 * M_PI);
+  if (hz >= 1e3) {
+    std::snprintf(buf, sizeof buf, "%.2g rad/s = %.2g kHz", omega, hz / 1e3);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.2g rad/s = %.2g Hz", omega, hz);
+  }
+  return buf;
+}
+
+/// The scene part of the reason: "stiffest mode ..., min mass ..., contact, dissipation".
+std::string scene_text(const SceneProbe& p) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "stiffest mode %s, smallest mass %.2g kg",
+                frequency_text(p.omega_max).c_str(), p.min_mass);
+  std::string s = buf;
+  s += p.contact ? ", non-smooth contact" : ", no contact";
+  s += p.dissipation ? ", dissipation" : ", no dissipation";
+  return s;
+}
+
+MethodChoice adaptive(const SceneProbe& p, const AutoRequest& r, ode::Method m, double tol,
+                      int rule, const char* why) {
+  MethodChoice c;
+  c.method = m;
+  c.rtol = tol;
+  c.atol = tol;
+  c.accuracy = r.accuracy;
+  c.probe = p;
+  c.rule = rule;
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "auto: %s rtol=atol=%.2g (%s; %s; energy budget %.2g)",
+                std::string(ode::to_string(m)).c_str(), tol, why, scene_text(p).c_str(),
+                r.accuracy);
+  c.reason = buf;
+  return c;
+}
+
+MethodChoice verlet(const SceneProbe& p, const AutoRequest& r, double h, const char* why) {
+  MethodChoice c;
+  c.method = ode::Method::kVerlet;
+  c.h_fixed = h;
+  c.energy_tol =
+      r.restarts ? 0.0 : kVerletBudgetShare * r.accuracy * std::min(1.0, kBudgetLength / r.t_end);
+  c.accuracy = r.accuracy;
+  c.probe = p;
+  c.rule = 6;
+  char buf[480];
+  std::snprintf(buf, sizeof buf,
+                "auto: verlet h=%.2g s, energy_tol %.2g (%s; %s; energy budget %.2g)", h,
+                c.energy_tol, why, scene_text(p).c_str(), r.accuracy);
+  c.reason = buf;
+  return c;
+}
+
+/// Verlet's step: 0.8 (0.7 with restarts) x its stability limit, or an elastic contact's ringing
+/// resolved.
+double verlet_step(const SceneProbe& p, const AutoRequest& r, std::string* why) {
+  const double safety = r.restarts ? kVerletSafetyRestarts : kVerletSafety;
+  const double stable = safety * 2.0 / p.omega_max;
+  const double contact =
+      p.omega_elastic_contact > 0.0 ? kContactResolution / p.omega_elastic_contact : stable;
+  char buf[160];
+  if (contact < stable) {
+    std::snprintf(buf, sizeof buf, "elastic contact resolved: 0.7/omega_c = %.2g s", contact);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.1f x its stability limit 2/omega = %.2g s", safety,
+                  2.0 / p.omega_max);
+  }
+  *why = buf;
+  double h = round_down_2(std::min(stable, contact));
+  if (h > r.h_max) {
+    h = r.h_max;
+    *why += ", capped at h_max";
+  }
+  return h;
+}
+
+}  // namespace
+
+MethodChoice choose_method(const SceneProbe& p, const AutoRequest& r) {
+  const double a = r.accuracy;
+  if (!(p.omega_max > 0.0)) {
+    return adaptive(p, r, ode::Method::kDopri5, a / 10.0, 1, "no springs: non-stiff");
+  }
+  if (a < kTightAccuracy) {
+    return p.contact
+               ? adaptive(p, r, ode::Method::kRodas4, a / 10.0, 2,
+                          "budget below 1e-6: high order, contact")
+               : adaptive(p, r, ode::Method::kRadau5, a / 10.0, 2, "budget below 1e-6: high order");
+  }
+  if (p.dissipation && !p.dissipation_split) {
+    return adaptive(p, r, ode::Method::kRodas4, a / 10.0, 3,
+                    "dampers on min_norm ghost points: no implicit dissipation for verlet");
+  }
+  if (p.omega_elastic_contact >= kContactDominates * p.omega_max) {
+    return adaptive(p, r, ode::Method::kDopri5, a * 1e-4, 5,
+                    "the stiffest mode is an elastic contact that must be resolved: non-stiff");
+  }
+  std::string why;
+  const double h = verlet_step(p, r, &why);
+  if (h < kVerletMinStep) {
+    return adaptive(p, r, ode::Method::kRadau5, a / 100.0, 4,
+                    "verlet would need > 5e4 steps per second: stiff, cost flat in k");
+  }
+  return verlet(p, r, h, why.c_str());
+}
+
+MethodChoice choose_method(const Mechanism& m, const AutoRequest& request) {
+  return choose_method(probe_scene(m), request);
+}
+
+void apply_choice(const MethodChoice& c, ode::SolverOptions* solver, double* energy_tol) {
+  solver->method = c.method;
+  if (c.method == ode::Method::kVerlet) {
+    solver->h_fixed = c.h_fixed;
+    *energy_tol = c.energy_tol;
+  } else {
+    solver->rtol = c.rtol;
+    solver->atol = c.atol;
+  }
+}
+
+}  // namespace pronk::pseudorigid
