@@ -76,6 +76,11 @@ struct SolverOptions {
   /// rodas4, radau5: systems with at most this many states factorise with dense LU,
   /// larger ones with Eigen's SparseLU (the crossover: bench_lu_crossover, docs/pseudorigid.md).
   int dense_lu_max_dimension = 150;
+  /// radau5 on mechanical systems with an analytic Jacobian: when the Newton iteration with
+  /// one Jacobian shared by the stages fails, switch to one Jacobian per stage (at the stages'
+  /// starting values) for a span of steps (docs/pseudorigid.md, "Solver: RADAU5"). Stiff
+  /// springs that rotate need it; false keeps Hairer's iteration.
+  bool radau5_stage_jacobians = true;
   /// cvode_bdf: KLU or dense LU for CVODE's Newton matrix I - gamma J (docs/pseudorigid.md).
   CvodeLinearSolver cvode_linear_solver = CvodeLinearSolver::kAuto;
 
