@@ -109,7 +109,7 @@ class Radau5Stepper final : public Stepper {
         lu1_(n <= options.dense_lu_max_dimension),
         lu2_(n <= options.dense_lu_max_dimension),
         stage_lu_(k().a, k().a_inv),
-        stage_option_(options.radau5_stage_jacobians) {
+        stage_option_(options.radau5_stage_jacobians && n <= options.dense_lu_max_dimension) {
     // RADAU5 maps the user's tolerances to the ones its order-3 error
     // estimate needs (rtol' = 0.1 rtol^(2/3), atol' = rtol' atol / rtol).
     const double quot = options.atol / options.rtol;

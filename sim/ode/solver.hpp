@@ -79,7 +79,8 @@ struct SolverOptions {
   /// radau5 on mechanical systems with an analytic Jacobian: when the Newton iteration with
   /// one Jacobian shared by the stages fails, switch to one Jacobian per stage (at the stages'
   /// starting values) for a span of steps (docs/pseudorigid.md, "Solver: RADAU5"). Stiff
-  /// springs that rotate need it; false keeps Hairer's iteration.
+  /// springs that rotate need it; false keeps Hairer's iteration. Systems above
+  /// dense_lu_max_dimension keep it too (the stage system is factorised dense).
   bool radau5_stage_jacobians = true;
   /// cvode_bdf: KLU or dense LU for CVODE's Newton matrix I - gamma J (docs/pseudorigid.md).
   CvodeLinearSolver cvode_linear_solver = CvodeLinearSolver::kAuto;
