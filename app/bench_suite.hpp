@@ -27,8 +27,9 @@ struct BenchConfig {
 /// One point of a work-precision diagram.
 struct WorkPoint {
   std::string problem;     ///< "satellite", "satellite_stiffness", "hopper", "hopper_stride_map"
-  std::string solver;      ///< euler, rk2, rk4, dopri5, rodas4
-  std::string variant;     ///< error norm of the pseudo-rigid runs ("state", "body"), else ""
+  std::string solver;      ///< euler, rk2, rk4, dopri5, rodas4, radau5, cvode_bdf, verlet
+  std::string variant;     ///< error norm of the pseudo-rigid runs ("state", "body"; cvode_bdf:
+                           ///< its linear solver, "klu"), else ""
   double stiffness = 0.0;  ///< internal stiffness of the pseudo-rigid body [N/m]; 0: n/a
   double tol = 0.0;        ///< rtol = atol of adaptive methods; 0 for fixed step
   double h = 0.0;          ///< fixed step [s]; 0 for adaptive methods
@@ -40,6 +41,9 @@ struct WorkPoint {
   /// Errors by name (only those that apply, only for completed runs):
   ///   omega_final   |w(t_end) - w_exact(t_end)| / |w0|, satellite vs the analytic precession
   ///   omega_l2      RMS over the output grid of |w - w_ref| / |w0| vs the tight reference run
+  ///   omega_final_ref  |w(t_end) - w_ref(t_end)| / |w0| vs the tight reference run of the same
+  ///                 stiffness: the solver's error without the model's (stiffness sweep)
+  ///   model_omega_error  stiffness sweep: omega_final of that reference (the model's error)
   ///   final_state   satellite: RMS of y(t_end) - y_ref(t_end) over all states [m, N s];
   ///                 hopper: |CoM position(t_end) - reference| [m]
   ///   l2_series     hopper: RMS over the 5 ms output grid of |CoM - CoM_ref| [m]

@@ -4,9 +4,14 @@
 // four-leg drop (studies/mechanisms/four_leg_drop.json): cost and energy-balance
 // drift with the barycentric and the minimum-norm ghost transfer.
 // Prints one JSON document; wall times are medians of 3 runs.
+// `bench_pseudorigid --one K METHOD TOL [state|body] [REPEAT]` runs one satellite setting
+// (stiffness K [N/m], rtol = atol = TOL or the fixed step) and prints one JSON line with its
+// median thread CPU time.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -74,10 +79,59 @@ void four_leg(GhostTransfer transfer, double tol, bool* first) {
   *first = false;
 }
 
+/// CPU time of the calling thread [s].
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// --one K METHOD TOL [NORM] [REPEAT]: one satellite run, median thread CPU of REPEAT.
+int run_one(int argc, char** argv) {
+  const double k = std::atof(argv[2]);
+  pronk::ode::Method method{};
+  if (!pronk::ode::parse_method(argv[3], &method)) {
+    std::fprintf(stderr, "bench_pseudorigid: unknown method %s\n", argv[3]);
+    return 2;
+  }
+  const double tol = std::atof(argv[4]);
+  const ErrorNorm norm =
+      argc > 5 && std::string(argv[5]) == "body" ? ErrorNorm::kBody : ErrorNorm::kState;
+  const int repeat = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
+  Mechanism m = ts::satellite(k, 20.0);
+  m.simulation.solver.method = method;
+  m.simulation.solver.rtol = m.simulation.solver.atol = tol;
+  if (!pronk::ode::is_adaptive(method)) m.simulation.solver.h_fixed = tol;
+  m.simulation.error_norm = norm;
+  std::vector<double> cpus;
+  RunSummary r;
+  for (int rep = 0; rep < repeat; ++rep) {
+    const double c0 = thread_cpu();
+    r = simulate(m);
+    cpus.push_back(thread_cpu() - c0);
+  }
+  std::sort(cpus.begin(), cpus.end());
+  MechanismSystem sys(m);
+  const double err =
+      r.y.empty() ? -1.0
+                  : (sys.body_omega(0, r.y.back()) - ts::satellite_omega(r.t.back())).norm() /
+                        ts::satellite_omega(0).norm();
+  std::printf(
+      "{\"k\": %g, \"method\": \"%s\", \"tol\": %g, \"norm\": \"%s\", \"status\": \"%s\", "
+      "\"cpu_s\": %.4g, \"steps\": %ld, \"rejected\": %ld, \"rhs\": %ld, \"jacobians\": %ld, "
+      "\"lu\": %ld, \"omega_rel_error\": %.3g}\n",
+      k, argv[3], tol, norm == ErrorNorm::kBody ? "body" : "state",
+      std::string(to_string(r.status)).c_str(), cpus[cpus.size() / 2], r.counters.steps_accepted,
+      r.counters.steps_rejected, r.counters.rhs_evaluations, r.counters.jacobian_evaluations,
+      r.counters.lu_factorizations, err);
+  return 0;
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   using pronk::ode::Method;
+  if (argc >= 5 && std::string(argv[1]) == "--one") return run_one(argc, argv);
   bool first = true;
   std::printf("{\"benchmark\": \"pseudorigid satellite, 4 x 1 kg, 20 s\",\n  \"runs\": [\n");
   for (double tol : {1e-4, 1e-6, 1e-8}) {

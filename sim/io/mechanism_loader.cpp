@@ -218,6 +218,9 @@ class Loader {
     j["max_steps"] = o.solver.max_steps;
     j["max_steps_per_second"] = o.solver.max_steps_per_second;
     j["dense_lu_max_dimension"] = o.solver.dense_lu_max_dimension;
+    if (o.solver.method == ode::Method::kCvodeBdf) {
+      j["cvode_linear_solver"] = std::string(ode::to_string(o.solver.cvode_linear_solver));
+    }
     j["error_norm"] = o.error_norm == pr::ErrorNorm::kBody ? "body" : "state";
     j["euler_set"] = o.euler_313 ? "313" : "123";
     j["energy_blowup_factor"] = o.energy_blowup_factor;
@@ -278,6 +281,9 @@ class Loader {
         s.number_or("max_steps_per_second", o->solver.max_steps_per_second, 0.0, 1e15);
     o->solver.dense_lu_max_dimension = static_cast<int>(
         s.integer_or("dense_lu_max_dimension", o->solver.dense_lu_max_dimension, 0, 1000000));
+    ode::parse_cvode_linear_solver(
+        s.choice_or("cvode_linear_solver", "auto", {"auto", "dense", "klu"}),
+        &o->solver.cvode_linear_solver);
     o->error_norm = s.choice_or("error_norm", "state", {"state", "body"}) == "body"
                         ? pr::ErrorNorm::kBody
                         : pr::ErrorNorm::kState;

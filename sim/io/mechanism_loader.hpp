@@ -32,7 +32,8 @@
 //                "atol", "h_fixed", "h_initial", "h_max", "h_min" [s], "max_steps", "energy_tol"
 //                (verlet: bound on its bounded energy term per step, relative to the run's energy
 //                scale; sub-steps h_fixed where needed; 0 = off), "max_steps_per_second" [1/s]
-//                (crawl guard, 0 = off), "dense_lu_max_dimension", "error_norm": "state"|"body",
+//                (crawl guard, 0 = off), "dense_lu_max_dimension", "cvode_linear_solver":
+//                "auto"|"dense"|"klu", "error_norm": "state"|"body",
 //                "euler_set": "123"|"313", "energy_blowup_factor", "check_jacobian",
 //                "zero_length_epsilon" [m], "ghost_transfer": "barycentric" (default, conservative)
 //                or "min_norm", "internal_stiffness": N/m or "auto", "contact_stiffness": N/m or

@@ -1,20 +1,27 @@
 // Method cvode_bdf: SUNDIALS CVODE's variable-order BDF (orders 1-5) behind pronk's Stepper
 // interface. One CVODE step per step() (CV_ONE_STEP, never past t_limit: CVodeSetStopTime),
 // dense output from CVODE's Nordsieck history (CVodeGetDky), the system's analytic Jacobian
-// when it has one (dense LU: SUNDIALS' dense solver), CVODE's difference quotients otherwise.
-// Events, samples and the energy accounting work on dense() as for rodas4 and radau5.
+// when it has one (sparse: KLU on a pattern that only grows, sim/ode/sundials_jacobian.hpp;
+// or SUNDIALS' dense LU), CVODE's difference quotients with dense LU otherwise. A scaled error
+// norm becomes CVODE's per-state atol. Events, samples and the energy accounting work on
+// dense() as for rodas4 and radau5.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include "sim/ode/steppers.hpp"
+#include "sim/ode/sundials_jacobian.hpp"
 
 namespace pronk::ode::detail {
 
@@ -25,6 +32,7 @@ struct CvodeHandles {
   SUNContext ctx = nullptr;
   N_Vector y = nullptr;
   N_Vector dky = nullptr;
+  N_Vector atol = nullptr;  ///< per-state atol (scaled norms)
   SUNMatrix a = nullptr;
   SUNLinearSolver ls = nullptr;
   void* mem = nullptr;
@@ -36,6 +44,7 @@ struct CvodeHandles {
     if (ls != nullptr) SUNLinSolFree(ls);
     if (a != nullptr) SUNMatDestroy(a);
     if (dky != nullptr) N_VDestroy(dky);
+    if (atol != nullptr) N_VDestroy(atol);
     if (y != nullptr) N_VDestroy(y);
     if (ctx != nullptr) SUNContext_Free(&ctx);
   }
@@ -47,15 +56,13 @@ void quiet(int, const char*, const char*, char*, void*) {}
 
 class CvodeStepper final : public Stepper {
  public:
-  CvodeStepper(const SolverOptions& o, int n) : o_(o), n_(n), y_(n), work_(n), dydt_(n) {
+  CvodeStepper(const SolverOptions& o, int n, ErrorNorm norm)
+      : o_(o), n_(n), norm_(std::move(norm)), y_(n), work_(n), dydt_(n) {
     if (SUNContext_Create(nullptr, &h_.ctx) != 0) throw std::runtime_error("SUNContext_Create");
     h_.y = N_VNew_Serial(n, h_.ctx);
     h_.dky = N_VNew_Serial(n, h_.ctx);
-    h_.a = SUNDenseMatrix(n, n, h_.ctx);
-    h_.ls = SUNLinSol_Dense(h_.y, h_.a, h_.ctx);
     h_.mem = CVodeCreate(CV_BDF, h_.ctx);
-    if (h_.y == nullptr || h_.dky == nullptr || h_.a == nullptr || h_.ls == nullptr ||
-        h_.mem == nullptr) {
+    if (h_.y == nullptr || h_.dky == nullptr || h_.mem == nullptr) {
       throw std::runtime_error("cvode_bdf: SUNDIALS could not allocate its objects");
     }
   }
@@ -120,10 +127,37 @@ class CvodeStepper final : public Stepper {
   SolverCounters& mutable_counters() override { return counters_; }
 
  private:
+  /// The matrix and linear solver for sys: KLU on the analytic Jacobian's pattern, or dense.
+  void make_linear_solver(const OdeSystem& sys) {
+    sparse_ = sys.has_jacobian() && o_.cvode_linear_solver != CvodeLinearSolver::kDense;
+    if (sparse_) {
+      // Room for the diagonal; the first Jacobian reallocates it to its pattern.
+      h_.a = SUNSparseMatrix(n_, n_, n_, CSC_MAT, h_.ctx);
+      if (h_.a != nullptr) h_.ls = SUNLinSol_KLU(h_.y, h_.a, h_.ctx);
+    } else {
+      h_.a = SUNDenseMatrix(n_, n_, h_.ctx);
+      if (h_.a != nullptr) h_.ls = SUNLinSol_Dense(h_.y, h_.a, h_.ctx);
+    }
+    if (h_.a == nullptr || h_.ls == nullptr) {
+      throw std::runtime_error("cvode_bdf: SUNDIALS could not allocate its linear solver");
+    }
+  }
+
+  /// rtol and atol, per state for a scaled norm.
+  bool set_tolerances() {
+    const Vec& scale = norm_.atol_scale();
+    if (scale.size() != n_) return CVodeSStolerances(h_.mem, o_.rtol, o_.atol) == CV_SUCCESS;
+    h_.atol = N_VNew_Serial(n_, h_.ctx);
+    if (h_.atol == nullptr) return false;
+    for (int i = 0; i < n_; ++i) N_VGetArrayPointer(h_.atol)[i] = o_.atol * scale[i];
+    return CVodeSVtolerances(h_.mem, o_.rtol, h_.atol) == CV_SUCCESS;
+  }
+
   void init(const OdeSystem& sys, double t) {
+    make_linear_solver(sys);
     void* m = h_.mem;
     bool ok = CVodeInit(m, &CvodeStepper::rhs_fn, t, h_.y) == CV_SUCCESS;
-    ok = ok && CVodeSStolerances(m, o_.rtol, o_.atol) == CV_SUCCESS;
+    ok = ok && set_tolerances();
     ok = ok && CVodeSetUserData(m, this) == CV_SUCCESS;
     ok = ok && CVodeSetErrHandlerFn(m, quiet, nullptr) == CV_SUCCESS;
     ok = ok && CVodeSetMaxStep(m, o_.h_max) == CV_SUCCESS;
@@ -131,7 +165,10 @@ class CvodeStepper final : public Stepper {
     ok = ok && CVodeSetMaxNumSteps(m, -1) == CV_SUCCESS;  // integrate() keeps the budgets
     ok = ok && (o_.h_initial <= 0.0 || CVodeSetInitStep(m, o_.h_initial) == CV_SUCCESS);
     ok = ok && CVodeSetLinearSolver(m, h_.ls, h_.a) == CV_SUCCESS;
-    if (ok && sys.has_jacobian()) ok = CVodeSetJacFn(m, &CvodeStepper::jac_fn) == CV_SUCCESS;
+    if (ok && sys.has_jacobian()) {
+      ok = CVodeSetJacFn(m, sparse_ ? &CvodeStepper::jac_sparse_fn : &CvodeStepper::jac_fn) ==
+           CV_SUCCESS;
+    }
     if (!ok) throw std::runtime_error("cvode_bdf: CVODE rejected its settings");
     initialised_ = true;
   }
@@ -160,15 +197,30 @@ class CvodeStepper final : public Stepper {
     std::memcpy(s->work_.data(), N_VGetArrayPointer(y),
                 sizeof(double) * static_cast<size_t>(s->n_));
     s->sys_->jacobian(t, s->work_, s->jac_);
-    SUNMatZero(j);
-    bool finite = true;
-    for (int k = 0; k < s->jac_.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(s->jac_, k); it; ++it) {
-        SM_ELEMENT_D(j, it.row(), it.col()) = it.value();
-        finite = finite && std::isfinite(it.value());
-      }
+    return sundials::copy_dense(s->jac_, j) ? 0 : 1;  // recoverable: CVODE cuts the step
+  }
+
+  static int jac_sparse_fn(double t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector,
+                           N_Vector, N_Vector) {
+    auto* s = static_cast<CvodeStepper*>(user);
+    std::memcpy(s->work_.data(), N_VGetArrayPointer(y),
+                sizeof(double) * static_cast<size_t>(s->n_));
+    s->sys_->jacobian(t, s->work_, s->jac_);
+    switch (s->pattern_.copy(s->jac_, j)) {
+      case sundials::SparsePattern::Copy::kSame:
+        return 0;
+      case sundials::SparsePattern::Copy::kGrown:
+        // A new pattern: KLU analyses it again at the next setup.
+        return SUNLinSol_KLUReInit(s->h_.ls, j, s->pattern_.nonzeros(), SUNKLU_REINIT_PARTIAL) ==
+                       SUNLS_SUCCESS
+                   ? 0
+                   : -1;
+      case sundials::SparsePattern::Copy::kNonFinite:
+        return 1;  // recoverable: CVODE cuts the step
+      case sundials::SparsePattern::Copy::kFailed:
+        break;
     }
-    return finite ? 0 : 1;  // recoverable: CVODE cuts the step
+    return -1;
   }
 
   /// CVODE's own counters since the last (re)initialisation.
@@ -211,10 +263,13 @@ class CvodeStepper final : public Stepper {
 
   SolverOptions o_;
   int n_;
+  ErrorNorm norm_;
   CvodeHandles h_;
   const OdeSystem* sys_ = nullptr;
   bool initialised_ = false;
   bool non_finite_ = false;
+  bool sparse_ = false;
+  sundials::SparsePattern pattern_;  ///< KLU: the Jacobians' pattern
   double t_ = 0.0, t_prev_ = 0.0;
   Vec y_, work_, dydt_;
   Eigen::SparseMatrix<double> jac_;
@@ -223,8 +278,8 @@ class CvodeStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n) {
-  return std::make_unique<CvodeStepper>(options, n);
+std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n, ErrorNorm norm) {
+  return std::make_unique<CvodeStepper>(options, n, std::move(norm));
 }
 
 }  // namespace pronk::ode::detail

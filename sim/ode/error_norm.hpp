@@ -44,6 +44,10 @@ class ErrorNorm {
 
   /// True for the plain norm (no scale, no custom norm).
   bool is_plain() const { return !custom_ && scale_.size() == 0; }
+  /// True for a custom norm (a system's own).
+  bool is_custom() const { return static_cast<bool>(custom_); }
+  /// The per-state atol multipliers of a scaled norm; empty for the plain and custom norms.
+  const Vec& atol_scale() const { return scale_; }
 
   double operator()(const Vec& err, const Vec& y0, const Vec& y1, double rtol, double atol) const {
     if (custom_) return custom_(err, y0, y1, rtol, atol);

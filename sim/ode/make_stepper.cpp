@@ -16,7 +16,9 @@ std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n, Error
   if (options.method == Method::kRadau5) {
     return detail::make_radau5_stepper(options, n, std::move(norm));
   }
-  if (options.method == Method::kCvodeBdf) return detail::make_cvode_stepper(options, n);
+  if (options.method == Method::kCvodeBdf) {
+    return detail::make_cvode_stepper(options, n, std::move(norm));
+  }
   if (options.method == Method::kVerlet) return detail::make_verlet_stepper(options, n);
   return detail::make_explicit_rk_stepper(options, n);
 }

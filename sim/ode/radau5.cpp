@@ -16,6 +16,7 @@
 // steps, omega error 7 %). A fully implicit method solves the stage equations
 // with the nonlinear forces themselves and steps over the vibration.
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <complex>
@@ -64,7 +65,16 @@ struct Radau5Constants {
     u1 = 1.0 / u1;
     alph /= cno;
     beta /= cno;
+    // A^-1 = T Lambda T^-1 with Lambda = [u1 0 0; 0 alph -beta; 0 beta alph] (the transformed
+    // Newton systems below), and A.
+    Eigen::Matrix3d t, ti, lambda;
+    t << t11, t12, t13, t21, t22, t23, t31, 1.0, 0.0;
+    ti << ti11, ti12, ti13, ti21, ti22, ti23, ti31, ti32, ti33;
+    lambda << u1, 0.0, 0.0, 0.0, alph, -beta, 0.0, beta, alph;
+    a_inv = t * lambda * ti;
+    a = a_inv.inverse();
   }
+  Eigen::Matrix3d a, a_inv;  ///< the Butcher matrix of Radau IIA and its inverse
 };
 
 const Radau5Constants& k() {
@@ -86,6 +96,9 @@ const StepSizeController::Params kRadau5Control{.safety = kSafe,
                                                 .predictive = true};
 constexpr double kQuot1 = 1.0, kQuot2 = 1.2;  ///< keep h (and the LU) if hnew/h is in here
 constexpr int kMaxFailures = 40;              ///< consecutive failed attempts before giving up
+/// Accepted steps of a stage-Jacobian period (radau5_stage_jacobians) before the cheaper
+/// shared Jacobian is tried again.
+constexpr int kMinStageSpan = 16, kMaxStageSpan = 1024;
 
 class Radau5Stepper final : public Stepper {
  public:
@@ -94,7 +107,9 @@ class Radau5Stepper final : public Stepper {
         control_(kRadau5Control, options),
         n_(n),
         lu1_(n <= options.dense_lu_max_dimension),
-        lu2_(n <= options.dense_lu_max_dimension) {
+        lu2_(n <= options.dense_lu_max_dimension),
+        stage_lu_(k().a, k().a_inv),
+        stage_option_(options.radau5_stage_jacobians && n <= options.dense_lu_max_dimension) {
     // RADAU5 maps the user's tolerances to the ones its order-3 error
     // estimate needs (rtol' = 0.1 rtol^(2/3), atol' = rtol' atol / rtol).
     const double quot = options.atol / options.rtol;
@@ -113,6 +128,8 @@ class Radau5Stepper final : public Stepper {
     assert(y.size() == y_.size());
     lu1_.use_structure(sys);
     lu2_.use_structure(sys);
+    stage_allowed_ = stage_option_ && sys.has_jacobian() && stage_lu_.use_structure(sys);
+    if (!stage_allowed_) stage_mode_ = false;
     t_ = t;
     t_prev_ = t;
     h_last_ = 0.0;
@@ -152,9 +169,18 @@ class Radau5Stepper final : public Stepper {
         continue;
       }
       start_stages(h);
+      if (stage_mode_ && !factorize_stages(sys, h)) {
+        retry(0.5 * h);
+        continue;
+      }
       int newt = 0;
       double h_slow = h;
       const NewtonOutcome outcome = newton(sys, h, t_new, &newt, &h_slow);
+      if (outcome != NewtonOutcome::kConverged && !stage_mode_ && stage_allowed_) {
+        enter_stage_mode();
+        retry(h);  // the same step with a Jacobian per stage
+        continue;
+      }
       if (outcome == NewtonOutcome::kSlow) {
         retry(h_slow);
         continue;
@@ -239,12 +265,16 @@ class Radau5Stepper final : public Stepper {
       sys.rhs(t_new, tmp_, g3_);
       counters_.rhs_evaluations += 3;
       if (!g1_.allFinite() || !g2_.allFinite() || !g3_.allFinite()) break;
-      // Right-hand sides of the transformed systems (stored in z1_, z2_, z3_).
-      z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_ - fac1 * w1_;
-      z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_ - alphn * w2_ + betan * w3_;
-      z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_ - alphn * w3_ - betan * w2_;
-      solve_real(z1_);
-      solve_complex(z2_, z3_);
+      if (stage_mode_) {
+        solve_stages(h);
+      } else {
+        // Right-hand sides of the transformed systems (stored in z1_, z2_, z3_).
+        z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_ - fac1 * w1_;
+        z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_ - alphn * w2_ + betan * w3_;
+        z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_ - alphn * w3_ - betan * w2_;
+        solve_real(z1_);
+        solve_complex(z2_, z3_);
+      }
       ++*newt;
       double dyno = 0.0;
       for (int i = 0; i < n_; ++i) {
@@ -290,6 +320,7 @@ class Radau5Stepper final : public Stepper {
     double h_new = control_.bounded(control_.accepted(h, err, fac, !first_), h, reject);
     first_ = false;
     accept(sys, h, tr.t_new);
+    count_mode_step();
     const double qt = h_new / h;
     if (theta_ <= kThet && qt >= kQuot1 && qt <= kQuot2) h_new = h;  // keep h and the LU
     control_.set_next(h_new, tr, reject);
@@ -301,6 +332,32 @@ class Radau5Stepper final : public Stepper {
     }
   }
 
+  /// The shared-Jacobian Newton failed (too slow or diverging): Newton with stage Jacobians
+  /// for the next stage_span_ accepted steps. Failing again soon after a return to the shared
+  /// Jacobian doubles the span (at most kMaxStageSpan); holding on for a full span resets it.
+  void enter_stage_mode() {
+    if (classic_steps_ < stage_span_) {
+      if (classic_steps_ >= 0) stage_span_ = std::min(2 * stage_span_, kMaxStageSpan);
+    } else {
+      stage_span_ = kMinStageSpan;
+    }
+    stage_mode_ = true;
+    stage_left_ = stage_span_;
+  }
+
+  /// After an accepted step: counts down the stage mode, then returns to the shared Jacobian
+  /// (cheaper per step) to see whether it converges again.
+  void count_mode_step() {
+    if (!stage_mode_) {
+      if (classic_steps_ >= 0) ++classic_steps_;
+      return;
+    }
+    if (--stage_left_ > 0) return;
+    stage_mode_ = false;
+    classic_steps_ = 0;
+    h_factored_ = -1.0;  // the complex factorisation was not kept up
+  }
+
   void evaluate_jacobian(const OdeSystem& sys) {
     detail::evaluate_jacobian(sys, t_, y_, f0_, j_sparse_, tmp_, g1_, counters_);
     assert(j_sparse_.rows() == y_.size() && j_sparse_.cols() == y_.size());
@@ -310,16 +367,52 @@ class Radau5Stepper final : public Stepper {
   }
 
   /// Factorises E1 = (gamma/h) I - J and E2 = ((alpha + i beta)/h) I - J
-  /// (counted as one factorisation of the iteration matrices).
+  /// (counted as one factorisation of the iteration matrices); with stage Jacobians only E1,
+  /// the error estimate's filter.
   bool factorize(double h) {
     if (h == h_factored_) return factorization_ok_;
     const auto& c = k();
     ++counters_.lu_factorizations;
     h_factored_ = h;
     const bool real_ok = lu1_.compute(j_sparse_, c.u1 / h);
-    const bool complex_ok = lu2_.compute(j_sparse_, Cplx(c.alph / h, c.beta / h));
+    const bool complex_ok = stage_mode_ || lu2_.compute(j_sparse_, Cplx(c.alph / h, c.beta / h));
     factorization_ok_ = real_ok && complex_ok;
     return factorization_ok_;
+  }
+
+  /// Stage Jacobians at the starting values of the stages (start_stages) and the Newton
+  /// matrix with them (StageLu); false when it is singular. A Jacobian that breaks the
+  /// mechanical structure ends the stage mode for this stepper (the step is retried).
+  bool factorize_stages(const OdeSystem& sys, double h) {
+    const auto& c = k();
+    const double cs[3] = {c.c1, c.c2, 1.0};
+    const Vec* zs[3] = {&z1_, &z2_, &z3_};
+    for (int i = 0; i < 3; ++i) {
+      tmp_ = y_ + *zs[i];
+      sys.jacobian(t_ + cs[i] * h, tmp_, j_stage_[static_cast<size_t>(i)]);
+    }
+    counters_.jacobian_evaluations += 3;
+    ++counters_.lu_factorizations;
+    if (stage_lu_.compute({&j_stage_[0], &j_stage_[1], &j_stage_[2]}, h)) return true;
+    if (!stage_lu_.broken()) return false;
+    stage_mode_ = stage_allowed_ = false;  // structure broken: the shared Jacobian from now on
+    h_factored_ = -1.0;
+    return false;
+  }
+
+  /// One Newton correction with the stage Jacobians: with g_i = f(stage i),
+  /// M dZ = g - (A^-1 / h) Z, and the transformed correction dW = T^-1 dZ in z1_, z2_, z3_.
+  void solve_stages(double h) {
+    const auto& c = k();
+    const Eigen::Matrix3d& ai = c.a_inv;
+    const double ih = 1.0 / h;
+    g1_ -= ih * (ai(0, 0) * z1_ + ai(0, 1) * z2_ + ai(0, 2) * z3_);
+    g2_ -= ih * (ai(1, 0) * z1_ + ai(1, 1) * z2_ + ai(1, 2) * z3_);
+    g3_ -= ih * (ai(2, 0) * z1_ + ai(2, 1) * z2_ + ai(2, 2) * z3_);
+    stage_lu_.solve(g1_, g2_, g3_);
+    z1_ = c.ti11 * g1_ + c.ti12 * g2_ + c.ti13 * g3_;
+    z2_ = c.ti21 * g1_ + c.ti22 * g2_ + c.ti23 * g3_;
+    z3_ = c.ti31 * g1_ + c.ti32 * g2_ + c.ti33 * g3_;
   }
 
   void solve_real(Vec& b) { lu1_.solve(b); }
@@ -406,6 +499,15 @@ class Radau5Stepper final : public Stepper {
   SolverCounters counters_;
   ShiftedLu<double> lu1_;  ///< (gamma/h) I - J
   ShiftedLu<Cplx> lu2_;    ///< ((alpha + i beta)/h) I - J
+  StageLu stage_lu_;       ///< the Newton matrix with a Jacobian per stage
+  std::array<Eigen::SparseMatrix<double>, 3> j_stage_;
+  bool stage_option_;               ///< SolverOptions::radau5_stage_jacobians
+  bool stage_allowed_ = false;      ///< ... and a mechanical system with an analytic Jacobian
+  bool stage_mode_ = false;         ///< Newton with stage Jacobians now
+  int stage_left_ = 0;              ///< accepted steps left in the stage mode
+  int stage_span_ = kMinStageSpan;  ///< accepted steps of the next stage mode
+  long classic_steps_ = -1;         ///< accepted shared-Jacobian steps since the last stage mode
+                                    ///< (-1: never in it)
 };
 
 }  // namespace

@@ -24,7 +24,7 @@ enum class Method {
   kRadau5,    ///< Radau IIA order 5 (Hairer-Wanner RADAU5), fully implicit (Newton), L-stable,
               ///< adaptive, collocation dense output; for stiff rotating springs
   kCvodeBdf,  ///< SUNDIALS CVODE, variable-order BDF (1-5), adaptive, Nordsieck dense output;
-              ///< the system's analytic Jacobian with dense LU (sim/ode/cvode.cpp)
+              ///< the system's analytic Jacobian with KLU or dense LU (sim/ode/cvode.cpp)
   kVerlet,    ///< velocity Verlet (Stormer-Verlet, kick-drift-kick), fixed step, order 2,
               ///< symplectic: one RHS per step, no energy drift on conservative mechanisms;
               ///< only for MechanicalSystems (sim/ode/mechanical_system.hpp)
@@ -36,6 +36,18 @@ std::string_view to_string(Method m);
 bool parse_method(std::string_view name, Method* out);
 /// True for methods with error control (step size adapted).
 bool is_adaptive(Method m);
+
+/// cvode_bdf: the linear solver of CVODE's Newton iteration.
+enum class CvodeLinearSolver {
+  kAuto,   ///< KLU (sparse) when the system has an analytic Jacobian, dense LU otherwise
+  kDense,  ///< SUNDIALS' dense LU (with difference quotients without an analytic Jacobian)
+  kKlu,    ///< KLU on the analytic Jacobian's pattern (dense LU without an analytic Jacobian)
+};
+
+/// "auto", "dense", "klu".
+std::string_view to_string(CvodeLinearSolver s);
+/// Parses the names of to_string; returns false on an unknown name.
+bool parse_cvode_linear_solver(std::string_view name, CvodeLinearSolver* out);
 
 /// How to integrate. Defaults suit the reduced models.
 struct SolverOptions {
@@ -64,6 +76,14 @@ struct SolverOptions {
   /// rodas4, radau5: systems with at most this many states factorise with dense LU,
   /// larger ones with Eigen's SparseLU (the crossover: bench_lu_crossover, docs/pseudorigid.md).
   int dense_lu_max_dimension = 150;
+  /// radau5 on mechanical systems with an analytic Jacobian: when the Newton iteration with
+  /// one Jacobian shared by the stages fails, switch to one Jacobian per stage (at the stages'
+  /// starting values) for a span of steps (docs/pseudorigid.md, "Solver: RADAU5"). Stiff
+  /// springs that rotate need it; false keeps Hairer's iteration. Systems above
+  /// dense_lu_max_dimension keep it too (the stage system is factorised dense).
+  bool radau5_stage_jacobians = true;
+  /// cvode_bdf: KLU or dense LU for CVODE's Newton matrix I - gamma J (docs/pseudorigid.md).
+  CvodeLinearSolver cvode_linear_solver = CvodeLinearSolver::kAuto;
 
   /// Checks every field; on failure writes "field: value: rule" into *error.
   bool validate(std::string* error) const;
@@ -121,8 +141,9 @@ class Stepper {
 };
 
 /// Creates the stepper of options.method for systems of dimension n. `norm`: the error norm
-/// of the adaptive methods (dopri5, rodas4, radau5) for the stepper's life; the others
-/// ignore it (cvode_bdf keeps CVODE's own weighted RMS norm).
+/// of the adaptive methods (dopri5, rodas4, radau5) for the stepper's life; cvode_bdf keeps
+/// CVODE's weighted RMS norm but takes a scaled norm's per-state atol (a custom norm, such as
+/// the body norm, it cannot use: it keeps the plain one); the fixed-step methods ignore it.
 std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, int n, ErrorNorm norm = {});
 
 /// Why integrate() returned.

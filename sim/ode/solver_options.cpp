@@ -40,6 +40,29 @@ bool parse_method(std::string_view name, Method* out) {
   return false;
 }
 
+std::string_view to_string(CvodeLinearSolver s) {
+  switch (s) {
+    case CvodeLinearSolver::kAuto:
+      return "auto";
+    case CvodeLinearSolver::kDense:
+      return "dense";
+    case CvodeLinearSolver::kKlu:
+      return "klu";
+  }
+  return "unknown";
+}
+
+bool parse_cvode_linear_solver(std::string_view name, CvodeLinearSolver* out) {
+  for (CvodeLinearSolver s :
+       {CvodeLinearSolver::kAuto, CvodeLinearSolver::kDense, CvodeLinearSolver::kKlu}) {
+    if (name == to_string(s)) {
+      *out = s;
+      return true;
+    }
+  }
+  return false;
+}
+
 bool is_adaptive(Method m) {
   return m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5 ||
          m == Method::kCvodeBdf;
@@ -69,7 +92,7 @@ bool positive_finite(std::string* error, const char* field, double value) {
 bool SolverOptions::validate(std::string* error) const {
   if (to_string(method) == "unknown") {
     return fail(error, "method", static_cast<double>(static_cast<int>(method)),
-                "must be one of euler, rk2, rk4, dopri5, rodas4, radau5, verlet");
+                "must be one of euler, rk2, rk4, dopri5, rodas4, radau5, cvode_bdf, verlet");
   }
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;

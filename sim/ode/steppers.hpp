@@ -38,8 +38,9 @@ std::unique_ptr<Stepper> make_rodas4_stepper(const SolverOptions& options, int n
 /// RADAU5 (Radau IIA, order 5) with simplified Newton, error control and dense output.
 std::unique_ptr<Stepper> make_radau5_stepper(const SolverOptions& options, int n, ErrorNorm norm);
 
-/// SUNDIALS CVODE BDF (sim/ode/cvode.cpp): the system's analytic Jacobian with dense LU.
-std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n);
+/// SUNDIALS CVODE BDF (sim/ode/cvode.cpp): the system's analytic Jacobian with KLU or dense
+/// LU; a scaled norm's per-state atol.
+std::unique_ptr<Stepper> make_cvode_stepper(const SolverOptions& options, int n, ErrorNorm norm);
 
 /// Velocity Verlet with fixed step options.h_fixed [s] and cubic Hermite dense output;
 /// reset() throws std::invalid_argument for a system that is not an ode::MechanicalSystem.

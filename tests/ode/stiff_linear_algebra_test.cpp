@@ -1,7 +1,9 @@
 // ShiftedLu: the momentum Schur-complement factorisation of mechanical systems
 // solves (s I - J) x = b to round-off, checked against the residual of the full
 // matrix (the independent reference) for real and complex shifts; Jacobians that
-// break the structure and non-mechanical systems fall back to the full LU.
+// break the structure and non-mechanical systems fall back to the full LU. StageLu (RADAU5's
+// Newton matrix with a Jacobian per stage) against the full 3n x 3n matrix.
+#include <cmath>
 #include <complex>
 #include <random>
 
@@ -144,4 +146,56 @@ TEST_CASE("Schur-complement LU falls back to the full LU when the structure brea
   }
   SECTION("a system without a mechanical split") { check_full_lu(PlainStub(4), true); }
   SECTION("sparse factorisations keep SparseLU") { check_full_lu(MechanicalStub(4), false); }
+}
+
+TEST_CASE("StageLu: the Newton matrix with a Jacobian per stage, through the momenta",
+          "[ode][lu]") {
+  // M = (A^-1 / h) (x) I - blockdiag(J_1, J_2, J_3) built in full (the reference) for three
+  // different mechanical Jacobians; StageLu's solve must match its residual to round-off.
+  std::mt19937 rng(13);
+  const int masses = 4, n = 6 * masses;
+  const MechanicalStub sys(masses);
+  Eigen::Matrix3d a;  // Radau IIA (order 5)
+  const double s6 = std::sqrt(6.0);
+  a << (88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225, (296 + 169 * s6) / 1800,
+      (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225, (16 - s6) / 36, (16 + s6) / 36, 1.0 / 9.0;
+  const Eigen::Matrix3d a_inv = a.inverse();
+  const Eigen::MatrixXd j1 = mechanical_jacobian(masses, rng);
+  Eigen::MatrixXd j2 = mechanical_jacobian(masses, rng), j3 = mechanical_jacobian(masses, rng);
+  // The stages may even differ in their position rates (W_i).
+  j3(0, 3) *= 2.0;
+  const Eigen::SparseMatrix<double> s1 = j1.sparseView(), s2 = j2.sparseView(),
+                                    s3 = j3.sparseView();
+  for (double h : {1e-5, 1e-3, 1e-1}) {
+    pronk::ode::detail::StageLu lu(a, a_inv);
+    REQUIRE(lu.use_structure(sys));
+    REQUIRE(lu.compute({&s1, &s2, &s3}, h));
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        m.block(i * n, k * n, n, n).diagonal().setConstant(a_inv(i, k) / h);
+      }
+    }
+    m.block(0, 0, n, n) -= j1;
+    m.block(n, n, n, n) -= j2;
+    m.block(2 * n, 2 * n, n, n) -= j3;
+    Vec r1 = random_vec(n, rng), r2 = random_vec(n, rng), r3 = random_vec(n, rng);
+    Vec b(3 * n);
+    b << r1, r2, r3;
+    lu.solve(r1, r2, r3);
+    Vec x(3 * n);
+    x << r1, r2, r3;
+    const double res = (m * x - b).norm() / (m.norm() * x.norm() + b.norm());
+    INFO("h = " << h << ", residual " << res);
+    CHECK(res < 1e-14);
+  }
+  // A position rate that depends on a position: no stage factorisation.
+  Eigen::MatrixXd broken = j2;
+  broken(0, 6) = 1.0;
+  const Eigen::SparseMatrix<double> sb = broken.sparseView();
+  pronk::ode::detail::StageLu lu(a, a_inv);
+  REQUIRE(lu.use_structure(sys));
+  CHECK_FALSE(lu.compute({&s1, &sb, &s3}, 1e-3));
+  CHECK(lu.broken());
+  CHECK_FALSE(pronk::ode::detail::StageLu(a, a_inv).use_structure(PlainStub(masses)));
 }
