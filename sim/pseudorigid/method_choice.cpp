@@ -127,6 +127,10 @@ MethodChoice choose_method(const SceneProbe& p, const AutoRequest& r) {
     return adaptive(p, r, ode::Method::kDopri5, a * 1e-4, 5,
                     "the stiffest mode is an elastic contact that must be resolved: non-stiff");
   }
+  if (!p.contact) {
+    return adaptive(p, r, ode::Method::kRadau5, a / 10.0, 7,
+                    "smooth (no contact): radau5 with stage Jacobians steps over the stiff modes");
+  }
   std::string why;
   const double h = verlet_step(p, r, &why);
   if (h < kVerletMinStep) {

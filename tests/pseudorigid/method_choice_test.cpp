@@ -67,7 +67,7 @@ TEST_CASE("auto: each rule on its probe", "[pseudorigid][auto]") {
   CHECK(c.method == Method::kRodas4);
   CHECK(c.rule == 3);
   // 4. Stiffer than 0.8 x 2 / omega = 2e-5 s: radau5, cost flat in the stiffness.
-  c = pr::choose_method(probe(1e5, false, false), request(1e-3));
+  c = pr::choose_method(probe(1e5, true, false), request(1e-3));
   CHECK(c.method == Method::kRadau5);
   CHECK(c.rule == 4);
   CHECK(c.rtol == Approx(1e-5));
@@ -84,12 +84,17 @@ TEST_CASE("auto: each rule on its probe", "[pseudorigid][auto]") {
   CHECK(c.rule == 6);
   CHECK(c.h_fixed == Approx(8e-4));
   CHECK(c.energy_tol == Approx(5e-4));
-  c = pr::choose_method(probe(3162.3, false, false), request(1e-3));
+  c = pr::choose_method(probe(3162.3, true, false), request(1e-3));
   CHECK(c.h_fixed == Approx(5e-4));  // 5.06e-4 rounded down
   // ... at most h_max.
   pr::AutoRequest r = request(1e-3);
   r.h_max = 1e-4;
-  CHECK(pr::choose_method(probe(2000.0, false, false), r).h_fixed == Approx(1e-4));
+  CHECK(pr::choose_method(probe(2000.0, true, false), r).h_fixed == Approx(1e-4));
+  // 7. Smooth (no contact): radau5 at a tenth of the budget, before rules 4 and 6.
+  c = pr::choose_method(probe(2000.0, false, false), request(1e-3));
+  CHECK(c.method == Method::kRadau5);
+  CHECK(c.rule == 7);
+  CHECK(c.rtol == Approx(1e-4));
   // The reason is one line and names the choice and its grounds.
   c = pr::choose_method(probe(2000.0, true, true), request(1e-3));
   CHECK(c.reason.find('\n') == std::string::npos);
@@ -100,13 +105,11 @@ TEST_CASE("auto: each rule on its probe", "[pseudorigid][auto]") {
 
 TEST_CASE("auto on the shipped mechanism scenes: verlet, and the run meets its budget",
           "[pseudorigid][auto]") {
-  // Expected: rule 6 (verlet, h = 0.8 x 2 / omega_max rounded down to two digits; omega_max
-  // checked against verlet's real limit in scene_probe_test.cpp), except spring_leg_drop,
-  // whose stiffest mode is its elastic ground contact (rule 5: dopri5 at 1e-7).
-  const std::map<std::string, double> expected_h = {{"explicit_instability", 8e-4},
-                                                    {"four_leg_drop", 4.7e-4},
-                                                    {"pendulum", 5e-4},
-                                                    {"satellite", 8e-4}};
+  // Expected: the scenes without contact rule 7 (radau5 at 1e-4); four_leg_drop rule 6
+  // (verlet, h = 0.8 x 2 / omega_max rounded down to two digits; omega_max checked against
+  // verlet's real limit in scene_probe_test.cpp); spring_leg_drop, whose stiffest mode is
+  // its elastic ground contact, rule 5 (dopri5 at 1e-7).
+  const std::map<std::string, double> expected_h = {{"four_leg_drop", 4.7e-4}};
   int n = 0;
   for (const auto& e : std::filesystem::directory_iterator(kRoot + "/studies/mechanisms")) {
     if (e.path().extension() != ".json") continue;
@@ -120,6 +123,11 @@ TEST_CASE("auto on the shipped mechanism scenes: verlet, and the run meets its b
       CHECK(c.method == Method::kDopri5);
       CHECK(c.rule == 5);
       CHECK(c.rtol == Approx(1e-7));
+      CHECK(l.mechanism.simulation.solver.rtol == c.rtol);
+    } else if (name != "four_leg_drop") {
+      CHECK(c.method == Method::kRadau5);
+      CHECK(c.rule == 7);
+      CHECK(c.rtol == Approx(1e-4));
       CHECK(l.mechanism.simulation.solver.rtol == c.rtol);
     } else {
       CHECK(c.method == Method::kVerlet);
