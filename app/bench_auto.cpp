@@ -1,7 +1,7 @@
 #include "app/bench_auto.hpp"
+#include "app/bench_suite.hpp"
 
 #include <algorithm>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -19,13 +19,6 @@ using nlohmann::json;
 namespace {
 
 constexpr double kGiveUp = 5.0;  ///< a family stops once a run costs this times the best
-
-/// CPU time of the calling thread [s].
-double thread_cpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 /// A scene of the check: its document (duration set) and kind.
 struct CheckScene {

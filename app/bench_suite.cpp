@@ -22,6 +22,13 @@
 
 namespace pronk::app::bench {
 
+/// CPU time of the calling thread [s]: robust against other jobs on a shared machine.
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 namespace pr = pronk::pseudorigid;
 using ode::Method;
 
@@ -32,13 +39,6 @@ double median(std::vector<double> v) {
 }
 
 namespace {
-
-/// CPU time of the calling thread [s]: robust against other jobs on a shared machine.
-double thread_cpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

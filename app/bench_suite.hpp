@@ -17,6 +17,9 @@
 
 namespace pronk::app::bench {
 
+/// CPU time of the calling thread [s]: robust against other jobs on a shared machine.
+double thread_cpu();
+
 /// How much to measure.
 struct BenchConfig {
   bool quick = false;       ///< CI size: fewer points, shorter runs (< 1 min in total)
