@@ -26,6 +26,15 @@ namespace ts = pronk::pseudorigid::test_scenes;
 
 namespace {
 
+/// The run's final body angular velocity against the satellite's analytic precession,
+/// relative to the initial spin; -1 when the run kept no state.
+double omega_error(const Mechanism& m, const RunSummary& r) {
+  if (r.y.empty()) return -1.0;
+  const MechanismSystem sys(m);
+  return (sys.body_omega(0, r.y.back()) - ts::satellite_omega(r.t.back())).norm() /
+         ts::satellite_omega(0).norm();
+}
+
 /// One satellite run; `tol` is rtol = atol of the adaptive methods, or the fixed step h [s] of
 /// the fixed-step methods (verlet).
 void run(const char* group, double k, pronk::ode::Method method, double tol, ErrorNorm norm,
@@ -42,11 +51,7 @@ void run(const char* group, double k, pronk::ode::Method method, double tol, Err
     walls.push_back(r.wall_time);
   }
   std::sort(walls.begin(), walls.end());
-  MechanismSystem sys(m);
-  const double err =
-      r.y.empty() ? -1.0
-                  : (sys.body_omega(0, r.y.back()) - ts::satellite_omega(r.t.back())).norm() /
-                        ts::satellite_omega(0).norm();
+  const double err = omega_error(m, r);
   std::printf(
       "%s    {\"group\": \"%s\", \"k\": %g, \"method\": \"%s\", \"tol\": %g, \"norm\": \"%s\", "
       "\"status\": \"%s\", \"wall_s\": %.4g, \"steps\": %ld, \"rejected\": %ld, \"rhs\": %ld, "
@@ -111,11 +116,7 @@ int run_one(int argc, char** argv) {
     cpus.push_back(thread_cpu() - c0);
   }
   std::sort(cpus.begin(), cpus.end());
-  MechanismSystem sys(m);
-  const double err =
-      r.y.empty() ? -1.0
-                  : (sys.body_omega(0, r.y.back()) - ts::satellite_omega(r.t.back())).norm() /
-                        ts::satellite_omega(0).norm();
+  const double err = omega_error(m, r);
   std::printf(
       "{\"k\": %g, \"method\": \"%s\", \"tol\": %g, \"norm\": \"%s\", \"status\": \"%s\", "
       "\"cpu_s\": %.4g, \"steps\": %ld, \"rejected\": %ld, \"rhs\": %ld, \"jacobians\": %ld, "

@@ -434,6 +434,10 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     doc["pseudo_rigid"]["position_trim_gain"] = 3;
     check_error(parse_error(doc), "/pseudo_rigid/position_trim_gain", "a finite number in [0, 2]",
                 "number 3");
+    doc["pseudo_rigid"]["position_trim_gain"] = 0.3;
+    doc["pseudo_rigid"]["attitude_trim_gain"] = -1;
+    check_error(parse_error(doc), "/pseudo_rigid/attitude_trim_gain", "a finite number in [0, 2]",
+                "number -1");
   }
   SECTION("max_strides 0") {
     doc["simulation"]["max_strides"] = 0;

@@ -21,17 +21,28 @@ Bias touchdown_bias(double gain) {
   const std::string scene_path = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
   // pr_running undisturbed, on Verlet with the energy thrust and study 3's first tuned gains.
   const pronk::scene::Scene s = pronk::io::load_scene(
-      scene_path,
-      {R"(/pseudo_rigid/solver={"method": "verlet", "h_fixed": 1.5e-4})",
-       R"(/pseudo_rigid/thrust="energy")", "/initial/position=[0,0,0.4]",
-       "/initial/attitude_deg=[0,0,0]", "/controller/kp/3=0.0436", "/controller/kd/3=0.00627",
-       "/controller/kp/4=0.00348", "/controller/kd/4=0.00787", "/pseudo_rigid/leg_stiffness=926",
-       "/pseudo_rigid/leg_damping=9.55", "/pseudo_rigid/stance_attitude/kp=[0.616,14.73]",
-       "/pseudo_rigid/stance_attitude/kd=[5.91,11.78]", "/pseudo_rigid/hop_trim_gain=0.484",
-       "/controller/kp/0=1.449", "/controller/kd/0=2.063", "/controller/kp/1=1.652",
-       "/controller/kd/1=2.077", "/controller/bank/kp=0.0486", "/controller/bank/kd=0.0892",
-       "/pseudo_rigid/position_trim_gain=0.332", "/simulation/duration=12",
-       "/pseudo_rigid/attitude_trim_gain=" + std::to_string(gain)});
+      scene_path, {R"(/pseudo_rigid/solver={"method": "verlet", "h_fixed": 1.5e-4})",
+                   R"(/pseudo_rigid/thrust="energy")",
+                   "/initial/position=[0,0,0.4]",
+                   "/initial/attitude_deg=[0,0,0]",
+                   "/controller/kp/3=0.0436",
+                   "/controller/kd/3=0.00627",
+                   "/controller/kp/4=0.00348",
+                   "/controller/kd/4=0.00787",
+                   "/pseudo_rigid/leg_stiffness=926",
+                   "/pseudo_rigid/leg_damping=9.55",
+                   "/pseudo_rigid/stance_attitude/kp=[0.616,14.73]",
+                   "/pseudo_rigid/stance_attitude/kd=[5.91,11.78]",
+                   "/pseudo_rigid/hop_trim_gain=0.484",
+                   "/controller/kp/0=1.449",
+                   "/controller/kd/0=2.063",
+                   "/controller/kp/1=1.652",
+                   "/controller/kd/1=2.077",
+                   "/controller/bank/kp=0.0486",
+                   "/controller/bank/kd=0.0892",
+                   "/pseudo_rigid/position_trim_gain=0.332",
+                   "/simulation/duration=12",
+                   "/pseudo_rigid/attitude_trim_gain=" + std::to_string(gain)});
   pronk::RunOptions o;
   o.record_trajectory = false;
   const pronk::RunResult r = pronk::simulate(s, o);
@@ -55,8 +66,8 @@ TEST_CASE("attitude integral action: touchdowns level out where the PD alone lea
   INFO("gain 0: roll " << off.roll << " deg, pitch " << off.pitch << " deg; gain 1: roll "
                        << on.roll << " deg, pitch " << on.pitch << " deg");
   CHECK(std::hypot(off.roll, off.pitch) > 0.4);  // the standing bias the PD leaves
-  CHECK(std::abs(off.pitch) > 0.4);  // here the bias is in pitch (measured: -0.69 deg)
-  CHECK(std::abs(on.pitch) < 0.1);   // learnt away (measured: -0.03 deg)
+  CHECK(std::abs(off.pitch) > 0.4);              // here the bias is in pitch (measured: -0.69 deg)
+  CHECK(std::abs(on.pitch) < 0.1);               // learnt away (measured: -0.03 deg)
   CHECK(std::abs(on.roll) <= std::abs(off.roll) + 0.05);  // and the roll not made worse
   CHECK(std::hypot(on.roll, on.pitch) < 0.5 * std::hypot(off.roll, off.pitch));
 }
