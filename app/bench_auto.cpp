@@ -8,6 +8,7 @@
 
 #include "sim/io/mechanism_loader.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/pseudorigid/method_choice.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/robot/robot_simulator.hpp"
 
@@ -57,6 +58,8 @@ json with_settings(const CheckScene& s, const AutoRun& r, double accuracy) {
   if (s.robot) {
     d["pseudo_rigid"]["solver"] = settings;
   } else {
+    // The scene's own step or tolerances give way to the run's (auto refuses them).
+    for (const char* k : pr::kAutoChosenSettings) d["simulation"].erase(k);
     for (auto it = settings.begin(); it != settings.end(); ++it) {
       d["simulation"][it.key()] = it.value();
     }

@@ -47,6 +47,7 @@ void drop(double tol, bool body_norm, bool* first) {
   s.pseudo_rigid.foot_mass = 0.01;
   s.pseudo_rigid.contact_damping = 63.0;  // 2 sqrt(k m): plastic foot impact
   s.pseudo_rigid.friction = 1.0;          // MuJoCo's default: without it the body tips over
+  s.pseudo_rigid.solver_auto = false;     // RODAS4 at tol (the method the bench measures)
   s.pseudo_rigid.solver.rtol = tol;
   s.pseudo_rigid.solver.atol = tol;
   s.pseudo_rigid.body_error_norm = body_norm;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "sim/io/auto_solver_input.hpp"
 #include "sim/io/json_reader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/builder.hpp"
@@ -27,8 +28,8 @@ const json* raw(const json& node, const std::string& key) {
   return it == node.end() ? nullptr : &*it;
 }
 
-/// The method of a scene that names none.
-constexpr const char* kDefaultMethod = "rodas4";
+/// The method of a scene that names none: chosen for the scene (method_choice.hpp).
+constexpr const char* kDefaultMethod = "auto";
 
 class Loader {
  private:
@@ -269,6 +270,7 @@ class Loader {
       throw s.error("method", "a solver name", method);
     }
     set->accuracy = s.number_or("accuracy", set->accuracy, pr::kMinAccuracy, pr::kMaxAccuracy);
+    if (set->method_auto) refuse_auto_chosen_settings(s, node);
     o->solver.rtol = s.positive_or("rtol", o->solver.rtol);
     o->solver.atol = s.positive_or("atol", o->solver.atol);
     o->solver.h_fixed = s.positive_or("h_fixed", o->solver.h_fixed);

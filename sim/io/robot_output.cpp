@@ -63,8 +63,16 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   json j = run_summary_json(scene, r.run, metrics);
   const auto& m = r.monitors;
   const auto& so = scene.pseudo_rigid.solver;
-  j["solver"] = {
-      {"method", std::string(ode::to_string(so.method))}, {"rtol", so.rtol}, {"atol", so.atol}};
+  // The settings the method ran with: its step for a fixed-step method, else its tolerances.
+  j["solver"] = {{"method", std::string(ode::to_string(so.method))}};
+  if (!ode::is_adaptive(so.method)) {
+    j["solver"]["h_fixed"] = so.h_fixed;
+    if (so.method == ode::Method::kVerlet)
+      j["solver"]["energy_tol"] = scene.pseudo_rigid.energy_tol;
+  } else {
+    j["solver"]["rtol"] = so.rtol;
+    j["solver"]["atol"] = so.atol;
+  }
   j["cost"]["jacobian_evaluations"] = r.run.cost.solver.jacobian_evaluations;
   j["cost"]["lu_factorizations"] = r.run.cost.solver.lu_factorizations;
   double max_slip_stance = 0.0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sim/io/auto_solver_input.hpp"
 #include "sim/pseudorigid/method_choice.hpp"
 
 namespace pronk::io {
@@ -99,6 +100,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
     if (!p.solver_auto) ode::parse_method(method, &so.method);
     p.accuracy =
         o.number_or("accuracy", p.accuracy, pseudorigid::kMinAccuracy, pseudorigid::kMaxAccuracy);
+    if (p.solver_auto) refuse_auto_chosen_settings(o, node.at("solver"));
     so.rtol = o.positive_or("rtol", so.rtol);
     so.atol = o.positive_or("atol", so.atol);
     so.h_fixed = o.positive_or("h_fixed", so.h_fixed);
@@ -167,8 +169,12 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"max_steps", so.max_steps},
               {"max_steps_per_second", so.max_steps_per_second},
               {"energy_tol", p.energy_tol}}}};
-  // "auto" stays "auto" in the resolved scene: the choice depends on the run.
-  if (p.solver_auto) j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
+  // "auto" stays "auto" in the resolved scene: the choice depends on the run. The settings
+  // auto chooses are left out (the reader refuses them under auto).
+  if (p.solver_auto) {
+    j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
+    for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);
+  }
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
   return j;

@@ -12,7 +12,10 @@
 //      on ghost points) -> rodas4, rtol = atol = a / 10.
 //   4. Verlet's step 0.8 x 2 / omega below 2e-5 s (more than 5e4 steps per simulated second;
 //      the satellite's cost crossover, bench: k = 1e8 N/m) -> radau5, whose cost is flat in
-//      the stiffness, rtol = atol = a / 100 (its estimate is looser per nominal tolerance).
+//      the stiffness, rtol = atol = a / 100 (its estimate is looser per nominal tolerance);
+//      a robot (restarts: its contacts switch at touchdown and lift-off, where RADAU5's
+//      Newton iterations stall) -> rodas4 at the same tolerance (pr_running at 1e7 and
+//      1e8 N/m: 0.40 and 0.34 s per simulated second).
 //   5. an elastic contact is the stiffest mode (omega_c >= 0.9 omega): its ringing must be
 //      resolved anyway, so the problem is not stiff (LSODA's test) -> dopri5,
 //      rtol = atol = a x 1e-4 (its energy drift on elastic impacts is ~3e3 x its tolerance:
@@ -28,6 +31,14 @@
 //      robot: touchdowns, apexes, foot switches) energy_tol = 0: there the restart offsets
 //      of the sub-stepped scheme dominate (pr_running: 1.5e-3 with a budget of 5e-4,
 //      6e-4 without at h = 1.2e-4 s).
+//   7. no contact, a mechanism (checked after 5, before 4 and 6): smooth -> radau5 with
+//      stage Jacobians, which steps over the stiff modes, rtol = atol = a / 10.
+//   8. no contact, a robot (force legs; checked before 7): its pulses switch the hip forces,
+//      so the steps are accuracy-limited -> dopri5 while its stability limit 3.3 / omega is
+//      above 8e-5 s (the cost crossover on case 5: dopri5 at 1e8 N/m, radau5 at 1e9),
+//      radau5 otherwise, rtol = atol = a / 1000 (the restarts: case 5 keeps 6e-4 at 1e-6,
+//      5.8e-3 at 1e-5).
+//   The order: 1, 2, 3, 5, 8, 7, 4, 6.
 // cvode_bdf is never chosen: its BDF above order 2 is not A-stable and gains energy on the
 // undamped vibrations of these models (docs/performance.md, quad hopper drop).
 #pragma once
@@ -57,13 +68,15 @@ struct MethodChoice {
   double atol = 0.0;        ///< adaptive methods
   double accuracy = 0.0;    ///< the request's
   SceneProbe probe;
-  int rule = 0;        ///< which rule of the header chose (1..6)
+  int rule = 0;        ///< which rule of the header chose (1..8)
   std::string reason;  ///< one line: "auto: verlet h=1.3e-4 s (stiffest mode ...)"
 };
 
 /// Smallest accuracy the readers accept (and the largest: 0.5).
 constexpr double kMinAccuracy = 1e-12;
 constexpr double kMaxAccuracy = 0.5;
+/// The solver settings auto chooses (the scene readers refuse them under "auto").
+constexpr const char* kAutoChosenSettings[] = {"rtol", "atol", "h_fixed", "energy_tol"};
 
 /// Applies the rule of the header to a probe.
 MethodChoice choose_method(const SceneProbe& probe, const AutoRequest& request);

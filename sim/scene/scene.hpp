@@ -188,16 +188,17 @@ struct PseudoRigid {
   /// springs' vibration, energy balance exact to tolerance), true = body level
   /// (CoM, attitude, free masses; cheaper, vibration left unresolved).
   bool body_error_norm = false;
-  /// The stiff solver of the full model (defaults: rodas4, rtol 1e-6, atol 1e-8).
+  /// The full model's solver when a method is named (solver_auto false; the settings a named
+  /// method starts from: rodas4, rtol 1e-6, atol 1e-8). Under auto, its h_max, max_steps, ...
   ode::SolverOptions solver = default_solver();
   /// Method verlet ("solver": {"energy_tol"}): bound on Verlet's bounded energy term,
   /// relative to the run's energy scale (solver.verlet_energy_budget = energy_tol x scale,
   /// sub-stepping the impacts); 0 = off. [-]
   double energy_tol = 0.0;
-  /// "solver": {"method": "auto"}: the run chooses the method and its step or tolerances
-  /// from its mechanism (sim/pseudorigid/method_choice.hpp); `solver` then holds the rest
-  /// (h_max, max_steps, ...). Not the default: the shipped results are on rodas4.
-  bool solver_auto = false;
+  /// "solver": {"method": "auto"}, the default: the run chooses the method and its step or
+  /// tolerances from its mechanism (sim/pseudorigid/method_choice.hpp); `solver` then holds
+  /// the rest (h_max, max_steps, ...). Set it false to run `solver.method`.
+  bool solver_auto = true;
   /// auto's target: the largest sampled energy-balance drift, relative to the run's energy
   /// scale ("solver": {"accuracy"}) [-].
   double accuracy = 1e-3;

@@ -24,14 +24,25 @@ using namespace cli_support;  // NOLINT(google-build-using-namespace): test help
 
 const std::string kRoot = std::string(PRONK_SOURCE_DIR);
 
+/// The shipped mechanism scene `name` without its method, step and tolerances (so on "auto",
+/// the default), written into `dir`; returns its path.
+std::string without_method(const TempDir& dir, const std::string& name) {
+  json doc = json::parse(slurp(kRoot + "/studies/mechanisms/" + name + ".json"));
+  for (const char* k : {"method", "rtol", "atol", "h_fixed", "energy_tol"}) {
+    doc["simulation"].erase(k);
+  }
+  const std::string path = dir / (name + ".json");
+  write_file(path, doc.dump(2));
+  return path;
+}
+
 }  // namespace
 
 TEST_CASE("auto on a mechanism: the summary's one line, and the resolved scene reruns",
           "[cli][auto]") {
   TempDir dir("auto");
-  const std::string scene = kRoot + "/studies/mechanisms/four_leg_drop.json";
-  Run r = pronk(
-      dir, {"simulate", scene, "--set", "/simulation/method=\"auto\"", "--out", "a", "--quiet"});
+  // No method named: auto, the default.
+  Run r = pronk(dir, {"simulate", without_method(dir, "four_leg_drop"), "--out", "a", "--quiet"});
   REQUIRE(r.code == 0);
   const json s = json::parse(slurp(dir / "a/summary.json"));
   CHECK(s["method"] == "verlet");
@@ -49,7 +60,8 @@ TEST_CASE("auto on a mechanism: the summary's one line, and the resolved scene r
   REQUIRE(r.code == 0);
   CHECK(slurp(dir / "a/nodes.csv") == slurp(dir / "b/nodes.csv"));
   CHECK(slurp(dir / "a/energy.csv") == slurp(dir / "b/energy.csv"));
-  // Not auto: no choice reported.
+  // A named method (the shipped scene's rodas4): no choice reported.
+  const std::string scene = kRoot + "/studies/mechanisms/four_leg_drop.json";
   r = pronk(dir, {"simulate", scene, "--set", "/simulation/t_end=0.05", "--out", "c", "--quiet"});
   REQUIRE(r.code == 0);
   const json plain = json::parse(slurp(dir / "c/summary.json"));
@@ -79,9 +91,8 @@ TEST_CASE("auto on the full model: the summary's one line", "[cli][auto][robot]"
 
 TEST_CASE("bad auto input exits 2 naming file and pointer", "[cli][auto]") {
   TempDir dir("auto");
-  const std::string mech = kRoot + "/studies/mechanisms/pendulum.json";
-  Run r = pronk(dir, {"simulate", mech, "--set", "/simulation/method=\"auto\"", "--set",
-                      "/simulation/accuracy=\"high\""});
+  const std::string mech = without_method(dir, "pendulum");
+  Run r = pronk(dir, {"simulate", mech, "--set", "/simulation/accuracy=\"high\""});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("pendulum.json: /simulation/accuracy: expected"));
   CHECK_THAT(r.err, Contains("\"high\""));
@@ -104,4 +115,31 @@ TEST_CASE("bad auto input exits 2 naming file and pointer", "[cli][auto]") {
                   R"(/pseudo_rigid/solver={"method": "auto", "acuracy": 1e-3})"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("/pseudo_rigid/solver/acuracy"));
+}
+
+// The settings auto chooses are refused under auto, named or the default, so that a tolerance
+// is never silently ignored: exit 2 naming file, pointer, expected and found.
+TEST_CASE("auto refuses the step and tolerances it chooses", "[cli][auto]") {
+  TempDir dir("auto");
+  const std::string mech = without_method(dir, "pendulum");
+  Run r = pronk(dir, {"simulate", mech, "--set", "/simulation/rtol=1e-8"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("pendulum.json: /simulation/rtol: expected no rtol under "
+                             "\"method\": \"auto\" (the default)"));
+  CHECK_THAT(r.err, Contains("found number 1e-08"));
+  // A shipped scene switched to auto keeps its rodas4 tolerances: refused, not ignored.
+  r = pronk(dir, {"simulate", kRoot + "/studies/mechanisms/satellite.json", "--set",
+                  "/simulation/method=\"auto\""});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("satellite.json: /simulation/rtol: expected no rtol under "
+                             "\"method\": \"auto\", which chooses it"));
+  const std::string robot = kRoot + "/studies/scenes/pr_running.json";
+  r = pronk(dir, {"simulate", robot, "--set", R"(/pseudo_rigid/solver={"h_fixed": 1e-4})"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("pr_running.json: /pseudo_rigid/solver/h_fixed: expected no "
+                             "h_fixed under \"method\": \"auto\" (the default)"));
+  r = pronk(dir, {"simulate", robot, "--set",
+                  R"(/pseudo_rigid/solver={"method": "auto", "energy_tol": 1e-4})"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("/pseudo_rigid/solver/energy_tol: expected no energy_tol"));
 }

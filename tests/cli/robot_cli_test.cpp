@@ -58,13 +58,18 @@ TEST_CASE("pronk simulate robot: one scene at three fidelities, same stride colu
   CHECK(fs::exists(pr + "/path3d.gp"));
   const json s = json::parse(slurp(pr + "/summary.json"));
   const json& p = s.at("pseudo_rigid");
-  CHECK(p.at("energy_balance_drift_relative").get<double>() < 1e-4);
+  // Auto's choice (no method named) meets its default budget, 1e-3 of the energy scale.
+  CHECK(p.at("energy_balance_drift_relative").get<double>() < 1e-3);
   CHECK(p.at("max_strain").get<double>() >= 0.0);
   CHECK(p.at("max_penetration_m").get<double>() == 0.0);  // force legs: no feet
   // The same robot in the pulse model, run alongside: force legs reproduce it.
   CHECK(p.at("discrepancy_vs_pulse_model").at("strides_compared").get<long>() >= 2);
   CHECK(p.at("discrepancy_vs_pulse_model").at("max_apex_difference_m").get<double>() < 1e-4);
-  CHECK(s.at("cost").at("jacobian_evaluations").get<long>() > 0);
+  // Force legs, no contact: auto chose DOPRI5 (rule 8), which counts RHS calls and no
+  // Jacobians.
+  CHECK_THAT(s.at("method_choice").get<std::string>(), Catch::Matchers::StartsWith("auto: dopri5"));
+  CHECK(s.at("cost").at("rhs_evaluations").get<long>() > 0);
+  CHECK(s.at("cost").at("jacobian_evaluations").get<long>() == 0);
 }
 
 TEST_CASE("pronk simulate robot: bad pseudo_rigid input exits 2 naming the pointer",

@@ -411,13 +411,16 @@ TEST_CASE("extreme: ground plane hit at high speed, penetration reported",
     CHECK(r.warnings.at("penetration_above_budget").find("budget 0.0001 m") != std::string::npos);
   }
   // A body dropped flat at 10 m/s under gravity on the seed's default contact: it survives
-  // and reports both the strain and the penetration it suffered.
+  // and reports both the strain and the penetration it suffered. On RODAS4 (the energy
+  // check is at its tolerance; auto's Verlet, h = 4.8e-4 s, drifts 4.8e-3 here: its
+  // summary says accuracy_met false, docs/solvers.md "Limits").
   const std::string doc = R"({"kind": "mechanism", "name": "impact",
       "bodies": [{"name": "box", "mass": 1.5, "inertia": [0.0074, 0.0106, 0.0164],
                   "com": [0, 0, 0.2], "velocity": [0, 0, -10]}],
       "surfaces": [{"name": "ground", "type": "plane", "point": [0, 0, 0],
                     "direction": [0, 0, 1], "nodes": ["box.0", "box.1", "box.2", "box.3"]}],
-      "simulation": {"t_end": 0.1, "output_interval": 0.005, "max_steps": 100000}})";
+      "simulation": {"t_end": 0.1, "output_interval": 0.005, "max_steps": 100000,
+                     "method": "rodas4"}})";
   const auto scene = load_text(doc);
   const RunSummary r = simulate(scene.mechanism);
   REQUIRE(r.status == RunStatus::kCompleted);

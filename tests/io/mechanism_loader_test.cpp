@@ -76,11 +76,22 @@ TEST_CASE("a valid mechanism document builds the expected components", "[io][mec
   CHECK(m.surfaces[0].slip_velocity == 1e-3);
   REQUIRE(m.body_forces.size() == 1);
   CHECK(m.body_forces[0].t_end == 0.2);
-  CHECK(m.simulation.solver.method == pronk::ode::Method::kRodas4);
+  // No method named: "auto", the default, chooses it (method_choice.hpp) and the resolved
+  // scene holds the choice as numbers.
+  REQUIRE(lm.method_auto);
+  CHECK(m.simulation.solver.method == lm.method_choice.method);
+  CHECK(lm.resolved["simulation"]["method"] ==
+        std::string(pronk::ode::to_string(lm.method_choice.method)));
   CHECK(m.simulation.solver.max_steps_per_second == 1e6);
   CHECK(lm.resolved["simulation"]["max_steps_per_second"] == 1e6);
-  CHECK(m.simulation.energy_tol == 0.0);  // verlet's energy budget is off by default
-  CHECK(lm.resolved["simulation"]["energy_tol"] == 0.0);
+  // A named method keeps its settings; verlet's energy budget is off by default.
+  json named = base();
+  named["simulation"]["method"] = "rodas4";
+  const io::LoadedMechanism ln = io::parse_mechanism(named, "x.json");
+  CHECK_FALSE(ln.method_auto);
+  CHECK(ln.mechanism.simulation.solver.method == pronk::ode::Method::kRodas4);
+  CHECK(ln.mechanism.simulation.energy_tol == 0.0);
+  CHECK(ln.resolved["simulation"]["energy_tol"] == 0.0);
   // Full tensor equal to the principal one gives the same mass placement.
   json full = base();
   full["bodies"][0]["inertia"] = json::parse("[[1,0,0],[0,1,0],[0,0,0.5]]");

@@ -43,6 +43,7 @@ pr::AutoRequest request(double accuracy) {
 io::LoadedMechanism load_auto(const std::string& file, double t_end = 0.0) {
   nlohmann::json doc = io::read_json_file(file);
   doc["simulation"]["method"] = "auto";
+  for (const char* k : pr::kAutoChosenSettings) doc["simulation"].erase(k);  // auto's to choose
   if (t_end > 0.0) doc["simulation"]["t_end"] = t_end;
   return io::parse_mechanism(doc, file);
 }
@@ -95,6 +96,32 @@ TEST_CASE("auto: each rule on its probe", "[pseudorigid][auto]") {
   CHECK(c.method == Method::kRadau5);
   CHECK(c.rule == 7);
   CHECK(c.rtol == Approx(1e-4));
+  // 8. A robot (restarts) without contact: dopri5 at a / 1000 while its stability limit
+  // 3.3 / omega stays above 8e-5 s (omega < 41 250 rad/s), radau5 beyond; before rule 7.
+  pr::AutoRequest robot = request(1e-3);
+  robot.restarts = true;
+  c = pr::choose_method(probe(2000.0, false, false), robot);
+  CHECK(c.method == Method::kDopri5);
+  CHECK(c.rule == 8);
+  CHECK(c.rtol == Approx(1e-6));
+  CHECK(pr::choose_method(probe(41000.0, false, false), robot).method == Method::kDopri5);
+  c = pr::choose_method(probe(42000.0, false, false), robot);
+  CHECK(c.method == Method::kRadau5);
+  CHECK(c.rule == 8);
+  CHECK(c.rtol == Approx(1e-6));
+  // 4. for a robot with contact: rodas4, not radau5, at a / 100 (its contacts switch).
+  c = pr::choose_method(probe(1e5, true, true), robot);
+  CHECK(c.method == Method::kRodas4);
+  CHECK(c.rule == 4);
+  CHECK(c.rtol == Approx(1e-5));
+  c = pr::choose_method(probe(1e5, true, true), request(1e-3));
+  CHECK(c.method == Method::kRadau5);
+  CHECK(c.rule == 4);
+  // ... and verlet with restarts at 0.7 x its limit, energy_tol 0, below that stiffness.
+  c = pr::choose_method(probe(1e4, true, true), robot);
+  CHECK(c.method == Method::kVerlet);
+  CHECK(c.h_fixed == Approx(1.4e-4));
+  CHECK(c.energy_tol == 0.0);
   // The reason is one line and names the choice and its grounds.
   c = pr::choose_method(probe(2000.0, true, true), request(1e-3));
   CHECK(c.reason.find('\n') == std::string::npos);

@@ -49,8 +49,8 @@ TEST_CASE("robot case 5: ghost-point hips, fixed-duration pulses, reaches and ho
     if (st[k].has_apex)
       CHECK(std::abs(st[k].apex_height - target) <= 0.02 * s.controller.hop_height);
   }
-  // Energy balance (actuator work included) holds to the solver tolerance.
-  CHECK(r.monitors.energy_drift <= 1e-4 * r.monitors.energy_scale);
+  // Energy balance (actuator work included) holds to the budget of auto, the default solver.
+  CHECK(r.monitors.energy_drift <= s.pseudo_rigid.accuracy * r.monitors.energy_scale);
   // The same robot in the pulse model: the body-level motion agrees.
   scene::Scene p = s;
   p.model = scene::ModelKind::kPulse;
@@ -256,12 +256,13 @@ TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[r
   REQUIRE(rd.run.status == reduced::RunStatus::kCompleted);
   REQUIRE(rd.run.strides.size() == rg.run.strides.size());
   // Measured: dummy-mass hips settle 5.9 mm above the ghost-point hips' 0.45 m (the
-  // ties' vibration under the pulses), energy balance 5e-8 of the scale.
+  // ties' vibration under the pulses); energy balance 1.6e-4 of the scale on auto's choice
+  // (DOPRI5 at 1e-6, rule 8), within its budget of 1e-3.
   for (size_t k = 0; k < rd.run.strides.size(); ++k) {
     if (!rd.run.strides[k].has_apex) continue;
     CHECK(std::abs(rd.run.strides[k].apex_height - rg.run.strides[k].apex_height) < 0.01);
   }
-  CHECK(rd.monitors.energy_drift <= 1e-5 * rd.monitors.energy_scale);
+  CHECK(rd.monitors.energy_drift <= d.pseudo_rigid.accuracy * rd.monitors.energy_scale);
 }
 
 // Issue 4's running criterion: from 10 deg roll and 0.2 m lateral offset the full
@@ -330,8 +331,12 @@ TEST_CASE("stance attitude feedback removes the running robot's period-2 roll mo
 // t = 1.25 s). With them all four feet land together and the stance feedback levels
 // the body in the first stance (measured: roll -1.50 deg at the second touchdown,
 // first-stance lateral impulse +0.11 N s, roll within 0.6 deg from the third touchdown on).
+// On RODAS4 at rtol 1e-6, atol 1e-8, as measured: the open-loop landing is chaotic (Verlet at
+// h = 1.2e-4 s, auto's choice, lands the third stride at -1.1 deg instead of +2.1 deg and does
+// not fall by 1.5 s; docs/solvers.md, "Limits").
 TEST_CASE("level feet let the running robot recover from a 10 deg roll landing", "[robot][heavy]") {
-  const std::vector<std::string> shortened = {"/simulation/duration=1.5"};
+  const std::vector<std::string> shortened = {"/simulation/duration=1.5",
+                                              R"(/pseudo_rigid/solver={"method":"rodas4"})"};
   std::vector<std::string> off = shortened;
   off.push_back("/pseudo_rigid/level_feet=false");
   const robot::RobotRunResult open = robot::simulate(load("pr_running.json", off), {false});
