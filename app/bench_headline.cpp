@@ -116,6 +116,8 @@ json growth_of(const std::map<double, const WorkPoint*>& by_k) {
     json b = point_brief(p);
     b["stiffness"] = k;
     b["omega_final_ref"] = p->errors.at("omega_final_ref");
+    const auto model = p->errors.find("model_omega_error");
+    if (model != p->errors.end()) b["model_omega_error"] = model->second;
     if (p->h > 0) b["h"] = p->h;
     g["points"].push_back(b);
     if (k == 1e4) lo = p->cpu_s;
@@ -129,18 +131,26 @@ json growth_of(const std::map<double, const WorkPoint*>& by_k) {
 }
 
 /// Issue 23: per solver (and norm), the cheapest sweep point at each stiffness whose omega
-/// error against the tight reference of that stiffness (the model's own solution) is at most
-/// 1e-5, and the growth of its cost from 1e4 to 1e8 N/m; "best_stiff" takes the cheapest
-/// stiff method (RODAS4 either norm, RADAU5) at each stiffness.
-void matched_growth(const std::vector<WorkPoint>& sweep, json* out) {
-  const double limit = 1e-5;
+/// error against the tight reference of that stiffness (the model's own solution) is within
+/// the target, and the growth of its cost from 1e4 to 1e8 N/m; "best_stiff" takes the
+/// cheapest stiff method (RODAS4 either norm, RADAU5) at each stiffness. The target is 1e-5,
+/// or the model's own omega error at that stiffness where that is larger (`with_model_error`:
+/// a solver need not be more accurate than the model it integrates; at 1e4 N/m the model is
+/// 1.4e-4 off the rigid body), else 1e-5 everywhere.
+json matched_growth(const std::vector<WorkPoint>& sweep, bool with_model_error) {
+  const double target = 1e-5;
+  auto limit_of = [&](const WorkPoint& p) {
+    const auto it = p.errors.find("model_omega_error");
+    return with_model_error && it != p.errors.end() ? std::max(target, it->second) : target;
+  };
   const std::vector<std::pair<std::string, std::string>> kinds = {{"rodas4", "state"},
                                                                   {"rodas4", "body"},
                                                                   {"dopri5", "state"},
                                                                   {"radau5", "state"},
                                                                   {"verlet", "state"}};
   json m;
-  m["omega_error_vs_reference_limit"] = limit;
+  m["omega_error_vs_reference_limit"] = target;
+  m["limit_includes_model_error"] = with_model_error;
   std::map<double, const WorkPoint*> best_stiff;
   for (const auto& [solver, variant] : kinds) {
     std::map<double, const WorkPoint*> cheapest;
@@ -150,7 +160,7 @@ void matched_growth(const std::vector<WorkPoint>& sweep, json* out) {
       }
       cheapest.emplace(p.stiffness, nullptr);
       auto it = p.errors.find("omega_final_ref");
-      if (p.status != "completed" || it == p.errors.end() || it->second > limit) continue;
+      if (p.status != "completed" || it == p.errors.end() || it->second > limit_of(p)) continue;
       const WorkPoint*& c = cheapest[p.stiffness];
       if (!c || p.cpu_s < c->cpu_s) c = &p;
       if (solver != "dopri5" && solver != "verlet") {
@@ -162,13 +172,14 @@ void matched_growth(const std::vector<WorkPoint>& sweep, json* out) {
     m[solver + "_" + variant] = growth_of(cheapest);
   }
   if (!best_stiff.empty()) m["best_stiff"] = growth_of(best_stiff);
-  (*out)["stiffness_growth"]["matched"] = m;
+  return m;
 }
 
 /// Issue 7: CPU time growth from k = 1e4 to 1e8 N/m.
 void stiffness_growth(const std::vector<WorkPoint>& sweep, const json& cvode, json* out) {
   json& h = *out;
-  matched_growth(sweep, out);
+  h["stiffness_growth"]["matched"] = matched_growth(sweep, true);
+  h["stiffness_growth"]["matched_strict"] = matched_growth(sweep, false);
   for (const std::string v : {"state", "body"}) {
     const WorkPoint* lo = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e4);
     const WorkPoint* hi = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e8);

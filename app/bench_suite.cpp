@@ -312,7 +312,8 @@ std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c) {
     // cheapest within the omega error target at each stiffness. Once its shared-Jacobian
     // Newton fails it takes a Jacobian per stage and steps over the vibration.
     const std::vector<double> radau_tols =
-        c.quick ? std::vector<double>{1e-6, 1e-8} : std::vector<double>{1e-5, 1e-6, 1e-7, 1e-8};
+        c.quick ? std::vector<double>{1e-6, 1e-8}
+                : std::vector<double>{1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8};
     for (double t : radau_tols) {
       point(satellite(k, Method::kRadau5, t, 0.0, pr::ErrorNorm::kState), "state", t, 0.0,
             c.quick ? 1 : c.repeat);

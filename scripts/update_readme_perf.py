@@ -131,20 +131,25 @@ def section(d, figdir):
                          ratio(sg[key]["ratio"]) +
                          f" ({ms(sg[key]['cpu_1e4_s'])} → {ms(sg[key]['cpu_1e8_s'])})", "≤ 3×"])
     mg = sg.get("matched", {})
-    for key, label in (("best_stiff", "fastest stiff method"), ("radau5_state", "RADAU5"),
-                       ("rodas4_state", "RODAS4, per-state norm"),
-                       ("rodas4_body", "RODAS4, body-level norm")):
-        if key not in mg:
+    ms_ = sg.get("matched_strict", {})
+    for key, label, grp, crit in (
+            ("best_stiff", "fastest stiff method", mg, "max(1e-5, the model's error)"),
+            ("radau5_state", "RADAU5", mg, "max(1e-5, the model's error)"),
+            ("rodas4_state", "RODAS4, per-state norm", mg, "max(1e-5, the model's error)"),
+            ("rodas4_body", "RODAS4, body-level norm", mg, "max(1e-5, the model's error)"),
+            ("best_stiff", "fastest stiff method", ms_, "1e-5 at every stiffness")):
+        if key not in grp:
             continue
-        pts = mg[key]["points"]
+        pts = grp[key]["points"]
         ends = "; ".join(
             f"{g(p['stiffness'])}: " + (f"{p['solver']} tol {g(p['tol'])} {ms(p['cpu_s'])}"
                                         if p.get("found", True) else "none")
             for p in pts)
-        measured = (ratio(mg[key]["ratio"]) if "ratio" in mg[key] else "not met at both ends")
-        if "max_over_min" in mg[key]:
-            measured += f", largest / smallest {ratio(mg[key]['max_over_min'])}"
-        rows.append([f"satellite stiffness sweep 1e4 → 1e8 N/m, cost growth at ω error ≤ 1e-5 "
+        measured = (ratio(grp[key]["ratio"]) if "ratio" in grp[key]
+                    else "not met at both ends")
+        if "max_over_min" in grp[key]:
+            measured += f", largest / smallest {ratio(grp[key]['max_over_min'])}"
+        rows.append([f"satellite stiffness sweep 1e4 → 1e8 N/m, cost growth at ω error ≤ {crit} "
                      f"against each stiffness's reference, {label} (cheapest tolerance per k)",
                      f"{measured} ({ends})", "≤ 3×"])
     if "cvode_dense_analytic" in sg:

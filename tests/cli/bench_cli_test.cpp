@@ -188,6 +188,18 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     REQUIRE(best["points"].size() == 2);
     for (const auto& p : best["points"]) REQUIRE(p.value("found", true));
     CHECK(best["points"][1]["steps"].get<long>() < best["points"][0]["steps"].get<long>());
+    // The issue's target: 1e-5, or the model's own error where that is larger; each chosen
+    // point is within it, and the strict variant (1e-5 everywhere) is reported beside it.
+    CHECK(g["matched"]["limit_includes_model_error"] == true);
+    for (const auto& p : best["points"]) {
+      const double limit = std::max(1e-5, p["model_omega_error"].get<double>());
+      CHECK(p["omega_final_ref"].get<double>() <= limit);
+    }
+    REQUIRE(g.contains("matched_strict"));
+    CHECK(g["matched_strict"]["limit_includes_model_error"] == false);
+    for (const auto& p : g["matched_strict"]["best_stiff"]["points"]) {
+      if (p.value("found", true)) CHECK(p["omega_final_ref"].get<double>() <= 1e-5);
+    }
     // Verlet at half its stability limit: steps grow like sqrt(k), 100x over the sweep.
     CHECK(g["verlet"]["steps_ratio"].get<double>() == Approx(100.0).epsilon(0.01));
   }
