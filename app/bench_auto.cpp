@@ -68,8 +68,8 @@ json with_settings(const CheckScene& s, const AutoRun& r, double accuracy) {
 }
 
 Outcome run_mechanism(const CheckScene& s, const json& doc) {
-  const io::LoadedMechanism l = io::parse_mechanism(doc, s.name);
-  const pr::RunSummary r = pr::simulate(l.mechanism);
+  io::LoadedMechanism l = io::parse_mechanism(doc, s.name);
+  const pr::RunSummary r = io::simulate_loaded(&l);  // auto's rerun, when it needs one, counts
   Outcome o;
   o.status = std::string(pr::to_string(r.status));
   o.steps = r.counters.steps_accepted;

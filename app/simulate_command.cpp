@@ -41,8 +41,8 @@ namespace {
 
 /// A generic pseudo-rigid mechanism scene (top-level "kind": "mechanism").
 int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
-  const io::LoadedMechanism scene = io::parse_mechanism(doc, args.scene_path);
-  const pseudorigid::RunSummary run = pseudorigid::simulate(scene.mechanism);
+  io::LoadedMechanism scene = io::parse_mechanism(doc, args.scene_path);
+  const pseudorigid::RunSummary run = io::simulate_loaded(&scene);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.mechanism.name : args.out_dir;
   io::write_mechanism_outputs(dir, scene, run);
   const std::string page = io::page::write_directory_page(dir);

@@ -25,7 +25,7 @@
 //   "actuators": [{"name", "type": "impulse", "node", "body", "direction", "force" [N],
 //                "impulse" [N s], "t_start" [s]}]
 //   "simulation": {"t_end", "output_interval" [s], "method": auto|euler|rk2|rk4|dopri5|rodas4|
-//                radau5|cvode_bdf|verlet (default rodas4; auto: method_choice.hpp picks the
+//                radau5|cvode_bdf|verlet (default auto: method_choice.hpp picks the
 //                method and its step or tolerances, replacing rtol/atol or h_fixed/energy_tol),
 //                "accuracy" (auto's target: largest sampled energy-balance drift relative to
 //                the energy scale, 1e-12..0.5, default 1e-3; ignored by the other methods), "rtol",
@@ -47,6 +47,7 @@
 #include "sim/io/input_error.hpp"
 #include "sim/pseudorigid/method_choice.hpp"
 #include "sim/pseudorigid/model.hpp"
+#include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/stiffness.hpp"
 
 namespace pronk::io {
@@ -68,5 +69,12 @@ bool is_mechanism_document(const nlohmann::json& doc);
 
 /// Builds the mechanism; `file` names the source in error messages.
 LoadedMechanism parse_mechanism(const nlohmann::json& doc, const std::string& file);
+
+/// Runs the loaded mechanism (pseudorigid::simulate). Under auto, a completed run whose
+/// sampled energy-balance drift misses the accuracy is rerun once with
+/// pseudorigid::refine_choice; `loaded`'s mechanism, method_choice and resolved document then
+/// hold the rerun's setting (the resolved scene reruns the rerun), and the summary's counters
+/// and wall time are both runs' sum. (sim/io/mechanism_run.cpp)
+pseudorigid::RunSummary simulate_loaded(LoadedMechanism* loaded);
 
 }  // namespace pronk::io

@@ -23,6 +23,8 @@ void add_method_choice(const pseudorigid::MethodChoice& c, double drift_relative
     a["rtol"] = c.rtol;
     a["atol"] = c.atol;
   }
+  a["reruns"] = c.reruns;
+  if (c.reruns > 0) a["first_run_drift_relative"] = c.first_drift;
   (*summary)["method_choice"] = c.reason;
   (*summary)["auto"] = a;
 }

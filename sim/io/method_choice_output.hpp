@@ -2,7 +2,9 @@
 //   "method_choice": the one-line reason (pseudorigid::MethodChoice::reason)
 //   "auto": {"method", "rule", "h_fixed_s" | "rtol"/"atol", "energy_tol", "accuracy",
 //            "omega_max_rad_s", "omega_bound_rad_s", "min_mass_kg", "contact", "dissipation",
-//            "energy_balance_drift_relative" (the run's), "accuracy_met"}
+//            "energy_balance_drift_relative" (the run's), "accuracy_met",
+//            "reruns" (1: the first run missed the accuracy and was rerun tighter),
+//            "first_run_drift_relative" (when rerun)}
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -55,6 +55,20 @@ std::string figure_path() {
          "splot 'trajectory.csv' u 2:3:4 w l t 'CoM', '' u 14:15:(0) w l dt 2 t 'setpoint'\n";
 }
 
+/// The settings the method ran with: its step for a fixed-step method (and Verlet's energy
+/// budget), else its tolerances.
+json solver_json(ode::Method method, double h_fixed, double energy_tol, double rtol, double atol) {
+  json s = {{"method", std::string(ode::to_string(method))}};
+  if (!ode::is_adaptive(method)) {
+    s["h_fixed"] = h_fixed;
+    if (method == ode::Method::kVerlet) s["energy_tol"] = energy_tol;
+  } else {
+    s["rtol"] = rtol;
+    s["atol"] = atol;
+  }
+  return s;
+}
+
 }  // namespace
 
 json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& r,
@@ -63,16 +77,7 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   json j = run_summary_json(scene, r.run, metrics);
   const auto& m = r.monitors;
   const auto& so = scene.pseudo_rigid.solver;
-  // The settings the method ran with: its step for a fixed-step method, else its tolerances.
-  j["solver"] = {{"method", std::string(ode::to_string(so.method))}};
-  if (!ode::is_adaptive(so.method)) {
-    j["solver"]["h_fixed"] = so.h_fixed;
-    if (so.method == ode::Method::kVerlet)
-      j["solver"]["energy_tol"] = scene.pseudo_rigid.energy_tol;
-  } else {
-    j["solver"]["rtol"] = so.rtol;
-    j["solver"]["atol"] = so.atol;
-  }
+  j["solver"] = solver_json(so.method, so.h_fixed, scene.pseudo_rigid.energy_tol, so.rtol, so.atol);
   j["cost"]["jacobian_evaluations"] = r.run.cost.solver.jacobian_evaluations;
   j["cost"]["lu_factorizations"] = r.run.cost.solver.lu_factorizations;
   double max_slip_stance = 0.0;
@@ -93,9 +98,7 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
       {"stiffness_note", m.stiffness.note}};
   if (m.method_auto) {
     const pseudorigid::MethodChoice& c = m.method_choice;
-    j["solver"] = {{"method", std::string(ode::to_string(c.method))},
-                   {"rtol", c.method == ode::Method::kVerlet ? so.rtol : c.rtol},
-                   {"atol", c.method == ode::Method::kVerlet ? so.atol : c.atol}};
+    j["solver"] = solver_json(c.method, c.h_fixed, c.energy_tol, c.rtol, c.atol);
     add_method_choice(c, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, &j);
   }
   if (pulse != nullptr) {

@@ -109,6 +109,17 @@ struct SolverCounters {
   long jacobian_evaluations = 0;  ///< analytic or finite-difference Jacobians (rodas4, radau5)
   long lu_factorizations = 0;     ///< LU factorisations of I/(gamma h) - J (rodas4; radau5
                                   ///< counts its real + complex pair as one)
+
+  /// Adds another run's counters (auto's rerun reports both runs' cost).
+  SolverCounters& operator+=(const SolverCounters& o) {
+    steps_accepted += o.steps_accepted;
+    steps_rejected += o.steps_rejected;
+    rhs_evaluations += o.rhs_evaluations;
+    events += o.events;
+    jacobian_evaluations += o.jacobian_evaluations;
+    lu_factorizations += o.lu_factorizations;
+    return *this;
+  }
 };
 
 /// Outcome of one step attempt.

@@ -177,6 +177,36 @@ MethodChoice choose_method(const Mechanism& m, const AutoRequest& request) {
   return choose_method(probe_scene(m), request);
 }
 
+bool needs_rerun(const MethodChoice& c, double drift_relative) {
+  return c.reruns == 0 && std::isfinite(drift_relative) && drift_relative > c.accuracy;
+}
+
+MethodChoice refine_choice(const MethodChoice& c, double drift_relative) {
+  constexpr double kAim = 0.5;         // of the accuracy
+  constexpr double kMaxFactor = 1e-3;  // the largest tightening at once
+  const double f = std::max(kMaxFactor, kAim * c.accuracy / drift_relative);
+  MethodChoice r = c;
+  r.reruns = c.reruns + 1;
+  r.first_drift = drift_relative;
+  char buf[200];
+  if (c.method == ode::Method::kVerlet && c.energy_tol > 0.0) {
+    r.energy_tol = c.energy_tol * f;
+    std::snprintf(buf, sizeof buf, "energy_tol %.2g -> %.2g", c.energy_tol, r.energy_tol);
+  } else if (c.method == ode::Method::kVerlet) {
+    r.h_fixed = round_down_2(c.h_fixed * std::sqrt(f));
+    std::snprintf(buf, sizeof buf, "h %.2g -> %.2g s", c.h_fixed, r.h_fixed);
+  } else {
+    r.rtol = c.rtol * f;
+    r.atol = c.atol * f;
+    std::snprintf(buf, sizeof buf, "rtol=atol %.2g -> %.2g", c.rtol, r.rtol);
+  }
+  char head[120];
+  std::snprintf(head, sizeof head, "; rerun: the first run drifted %.2g > %.2g, ", drift_relative,
+                c.accuracy);
+  r.reason += std::string(head) + buf;
+  return r;
+}
+
 void apply_choice(const MethodChoice& c, ode::SolverOptions* solver, double* energy_tol) {
   solver->method = c.method;
   if (c.method == ode::Method::kVerlet) {

@@ -70,6 +70,10 @@ struct MethodChoice {
   SceneProbe probe;
   int rule = 0;        ///< which rule of the header chose (1..8)
   std::string reason;  ///< one line: "auto: verlet h=1.3e-4 s (stiffest mode ...)"
+  /// > 0: this is the rerun's choice (refine_choice), after a first run that drifted by
+  /// first_drift (relative) with the first choice's step or tolerance first_setting.
+  int reruns = 0;
+  double first_drift = 0.0;
 };
 
 /// Smallest accuracy the readers accept (and the largest: 0.5).
@@ -82,6 +86,15 @@ constexpr const char* kAutoChosenSettings[] = {"rtol", "atol", "h_fixed", "energ
 MethodChoice choose_method(const SceneProbe& probe, const AutoRequest& request);
 /// Probes m and chooses.
 MethodChoice choose_method(const Mechanism& m, const AutoRequest& request);
+
+/// The check after the run: a completed run under auto whose sampled energy-balance drift
+/// (relative) exceeds the accuracy is rerun once with refine_choice's setting. The probe
+/// cannot foresee every impact (a 10 m/s drop: Verlet at energy_tol 5e-4 drifted 4.8e-3).
+bool needs_rerun(const MethodChoice& c, double drift_relative);
+/// The rerun's choice: the same method with its knob scaled so that the drift, assumed
+/// proportional to energy_tol or to the tolerance (to h^2 for Verlet without a budget), aims
+/// at half the accuracy; at most a factor 1000 at once. The reason gains "; rerun: ...".
+MethodChoice refine_choice(const MethodChoice& c, double drift_relative);
 
 /// Writes the choice into solver options (method, h_fixed or rtol/atol; the rest, h_max,
 /// max_steps, ..., stay the user's) and verlet's relative energy budget into *energy_tol.

@@ -432,4 +432,21 @@ TEST_CASE("extreme: ground plane hit at high speed, penetration reported",
   const nlohmann::json summary = io::mechanism_summary_json(scene, r);
   CHECK(summary["warnings"].size() == 2);
   CHECK(summary["monitors"]["max_penetration_m"].get<double>() == r.max_penetration);
+  // The same impact on auto, the default: its Verlet (h = 4.8e-4 s, energy_tol 5e-4) drifts
+  // 4.8e-3, so auto reruns it once with energy_tol scaled to 5.2e-5, which meets the budget
+  // (measured 5.2e-4); the cost reported is both runs'.
+  nlohmann::json on_auto = nlohmann::json::parse(doc);
+  on_auto["simulation"].erase("method");
+  io::LoadedMechanism la = io::parse_mechanism(on_auto, "impact.json");
+  REQUIRE(la.method_auto);
+  const RunSummary first = simulate(la.mechanism);
+  CHECK(first.energy_drift / first.energy_scale > 1e-3);
+  const RunSummary ra = io::simulate_loaded(&la);
+  REQUIRE(ra.status == RunStatus::kCompleted);
+  CHECK(ex::all_finite(ra));
+  CHECK(la.method_choice.reruns == 1);
+  CHECK(la.method_choice.first_drift == first.energy_drift / first.energy_scale);
+  CHECK(ra.energy_drift / ra.energy_scale <= 1e-3);
+  CHECK(ra.counters.steps_accepted > first.counters.steps_accepted);
+  CHECK(la.resolved["simulation"]["energy_tol"].get<double>() == la.method_choice.energy_tol);
 }

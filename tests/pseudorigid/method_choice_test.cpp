@@ -192,3 +192,39 @@ TEST_CASE("auto on pr_running: verlet below the feet's limit, within the budget"
   CHECK(r.run.status == pronk::reduced::RunStatus::kCompleted);
   CHECK(m.energy_drift <= 1e-3 * m.energy_scale);
 }
+
+TEST_CASE("auto's rerun: the knob scaled to aim at half the budget, once", "[pseudorigid][auto]") {
+  // Verlet with a budget: energy_tol x 0.5 a / drift.
+  pr::MethodChoice c = pr::choose_method(probe(2000.0, true, false), request(1e-3));
+  REQUIRE(c.method == Method::kVerlet);
+  REQUIRE(c.energy_tol == Approx(5e-4));
+  CHECK_FALSE(pr::needs_rerun(c, 1e-3));  // met (at the bar)
+  CHECK(pr::needs_rerun(c, 4e-3));
+  pr::MethodChoice r = pr::refine_choice(c, 4e-3);
+  CHECK(r.energy_tol == Approx(5e-4 * 0.5 * 1e-3 / 4e-3));
+  CHECK(r.h_fixed == c.h_fixed);
+  CHECK(r.reruns == 1);
+  CHECK(r.first_drift == 4e-3);
+  CHECK(r.reason.rfind(c.reason, 0) == 0);
+  CHECK(r.reason.find("; rerun: the first run drifted 0.004 > 0.001, energy_tol 0.0005 -> "
+                      "6.3e-05") != std::string::npos);
+  CHECK(r.reason.find('\n') == std::string::npos);
+  CHECK_FALSE(pr::needs_rerun(r, 1.0));  // once only
+  // Verlet without a budget (a robot): h x sqrt(0.5 a / drift), rounded down to two digits.
+  pr::AutoRequest robot = request(1e-3);
+  robot.restarts = true;
+  c = pr::choose_method(probe(1e4, true, true), robot);
+  REQUIRE(c.energy_tol == 0.0);
+  r = pr::refine_choice(c, 2e-3);
+  CHECK(r.h_fixed == Approx(0.7e-4));  // 1.4e-4 x sqrt(0.25)
+  CHECK(r.energy_tol == 0.0);
+  // Adaptive methods: rtol = atol x 0.5 a / drift, at most a factor 1000 at once.
+  c = pr::choose_method(probe(2000.0, false, false), request(1e-3));
+  REQUIRE(c.method == Method::kRadau5);
+  r = pr::refine_choice(c, 5e-3);
+  CHECK(r.rtol == Approx(1e-4 * 0.1));
+  CHECK(r.atol == r.rtol);
+  CHECK(pr::refine_choice(c, 1e3).rtol == Approx(1e-7));  // capped
+  // A non-finite drift never asks for a rerun (the run reports it instead).
+  CHECK_FALSE(pr::needs_rerun(c, std::nan("")));
+}
