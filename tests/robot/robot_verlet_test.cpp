@@ -191,3 +191,29 @@ TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running)", "
   INFO("lateral " << lat_a << " vs " << lat_b << " m");
   CHECK(within(lat_a, lat_b, 1e-3));
 }
+
+// Auto checks a robot run too. pr_running, 2 s, with an accuracy of 1e-4: auto's Verlet at
+// h = 1.2e-4 s (no energy budget: restarts) drifts 2.2e-4, so it is rerun once at
+// h = 1.2e-4 x sqrt(0.5 x 1e-4 / 2.2e-4) = 5.7e-5 s (two digits, rounded down), which drifts
+// 8.6e-5 (measured). The cost reported is both runs'.
+TEST_CASE("auto reruns a robot run that missed its budget, once, with the smaller step",
+          "[robot][auto]") {
+  const scene::Scene s = load(
+      "pr_running.json", {"/simulation/duration=2", R"(/pseudo_rigid/solver={"accuracy": 1e-4})"});
+  const robot::RobotRunResult r = robot::simulate(s);
+  REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
+  const auto& c = r.monitors.method_choice;
+  REQUIRE(r.monitors.method_auto);
+  CHECK(c.reruns == 1);
+  CHECK(c.first_drift > 1e-4);
+  CHECK(c.h_fixed == Approx(1.2e-4 * std::sqrt(0.5e-4 / c.first_drift)).epsilon(0.02));
+  CHECK(c.h_fixed < 1.2e-4 * std::sqrt(0.5e-4 / c.first_drift));  // rounded down
+  CHECK(r.monitors.energy_drift <= 1e-4 * r.monitors.energy_scale);
+  // Both runs' steps: the first at 1.2e-4 s over 2 s, the rerun at c.h_fixed.
+  CHECK(r.run.cost.solver.steps_accepted >= static_cast<long>(2.0 / 1.2e-4 + 2.0 / c.h_fixed));
+  // The same scene at the default budget (1e-3) is not rerun.
+  const robot::RobotRunResult d =
+      robot::simulate(load("pr_running.json", {"/simulation/duration=2"}));
+  CHECK(d.monitors.method_choice.reruns == 0);
+  CHECK(d.monitors.energy_drift <= 1e-3 * d.monitors.energy_scale);
+}
