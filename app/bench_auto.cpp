@@ -74,7 +74,7 @@ Outcome run_mechanism(const CheckScene& s, const json& doc) {
   o.status = std::string(pr::to_string(r.status));
   o.steps = r.counters.steps_accepted;
   o.rejected = r.counters.steps_rejected;
-  o.drift = r.energy_scale > 0.0 ? r.energy_drift / r.energy_scale : 0.0;
+  o.drift = r.drift_relative();
   if (l.method_auto) o.choice = l.method_choice.reason;
   return o;
 }
@@ -87,7 +87,7 @@ Outcome run_robot(const CheckScene& s, const json& doc) {
   o.steps = r.run.cost.solver.steps_accepted;
   o.rejected = r.run.cost.solver.steps_rejected;
   const robot::RobotMonitors& m = r.monitors;
-  o.drift = m.energy_scale > 0.0 ? m.energy_drift / m.energy_scale : 0.0;
+  o.drift = m.drift_relative();
   if (m.method_auto) o.choice = m.method_choice.reason;
   return o;
 }

@@ -89,8 +89,7 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
     std::printf(
         "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g "
         "m, max slip %.3g m\n",
-        m.energy_drift, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, m.max_strain,
-        m.max_penetration, m.max_slip);
+        m.energy_drift, m.drift_relative(), m.max_strain, m.max_penetration, m.max_slip);
     std::printf("  cost: %ld steps (%ld rejected), %ld RHS, %ld Jacobians, %ld LU, %.3f ms\n",
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
                 c.lu_factorizations, r.run.cost.wall_time * 1e3);

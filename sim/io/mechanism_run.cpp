@@ -9,10 +9,6 @@ namespace pr = pronk::pseudorigid;
 
 namespace {
 
-double drift_of(const pr::RunSummary& r) {
-  return r.energy_scale > 0.0 ? r.energy_drift / r.energy_scale : 0.0;
-}
-
 /// The resolved document's chosen settings, rewritten from the mechanism's options.
 void write_chosen(const pr::SimulationOptions& o, nlohmann::json* sim) {
   (*sim)["method"] = std::string(ode::to_string(o.solver.method));
@@ -27,10 +23,10 @@ void write_chosen(const pr::SimulationOptions& o, nlohmann::json* sim) {
 pr::RunSummary simulate_loaded(LoadedMechanism* loaded) {
   const pr::RunSummary first = pr::simulate(loaded->mechanism);
   if (!loaded->method_auto || first.status != pr::RunStatus::kCompleted ||
-      !pr::needs_rerun(loaded->method_choice, drift_of(first))) {
+      !pr::needs_rerun(loaded->method_choice, first.drift_relative())) {
     return first;
   }
-  loaded->method_choice = pr::refine_choice(loaded->method_choice, drift_of(first));
+  loaded->method_choice = pr::refine_choice(loaded->method_choice, first.drift_relative());
   pr::SimulationOptions& o = loaded->mechanism.simulation;
   pr::apply_choice(loaded->method_choice, &o.solver, &o.energy_tol);
   write_chosen(o, &loaded->resolved["simulation"]);

@@ -82,24 +82,23 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   j["cost"]["lu_factorizations"] = r.run.cost.solver.lu_factorizations;
   double max_slip_stance = 0.0;
   for (double s : r.stride_slip) max_slip_stance = std::max(max_slip_stance, s);
-  j["pseudo_rigid"] = {
-      {"energy_scale_J", m.energy_scale},
-      {"energy_balance_drift_J", m.energy_drift},
-      {"energy_balance_drift_relative", m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0},
-      {"max_strain", m.max_strain},
-      {"max_penetration_m", m.max_penetration},
-      {"max_slip_per_stance_m", max_slip_stance},
-      {"max_friction_ratio", m.max_friction_ratio},
-      {"hip_and_external_work_J", m.hip_work},
-      {"max_leg_vibration_energy_J", m.max_leg_vibration_energy},
-      {"zero_length_triggers", m.zero_length_triggers},
-      {"internal_stiffness_N_per_m", m.internal_stiffness},
-      {"contact_stiffness_N_per_m", m.contact_stiffness},
-      {"stiffness_note", m.stiffness.note}};
+  j["pseudo_rigid"] = {{"energy_scale_J", m.energy_scale},
+                       {"energy_balance_drift_J", m.energy_drift},
+                       {"energy_balance_drift_relative", m.drift_relative()},
+                       {"max_strain", m.max_strain},
+                       {"max_penetration_m", m.max_penetration},
+                       {"max_slip_per_stance_m", max_slip_stance},
+                       {"max_friction_ratio", m.max_friction_ratio},
+                       {"hip_and_external_work_J", m.hip_work},
+                       {"max_leg_vibration_energy_J", m.max_leg_vibration_energy},
+                       {"zero_length_triggers", m.zero_length_triggers},
+                       {"internal_stiffness_N_per_m", m.internal_stiffness},
+                       {"contact_stiffness_N_per_m", m.contact_stiffness},
+                       {"stiffness_note", m.stiffness.note}};
   if (m.method_auto) {
     const pseudorigid::MethodChoice& c = m.method_choice;
     j["solver"] = solver_json(c.method, c.h_fixed, c.energy_tol, c.rtol, c.atol);
-    add_method_choice(c, m.energy_scale > 0 ? m.energy_drift / m.energy_scale : 0.0, &j);
+    add_method_choice(c, m.drift_relative(), &j);
   }
   if (pulse != nullptr) {
     j["pseudo_rigid"]["discrepancy_vs_pulse_model"] = {

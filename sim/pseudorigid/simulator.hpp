@@ -54,6 +54,9 @@ struct RunSummary {
   ///                             internal strain perturbs by > 1e-3 (estimate: strain x
   ///                             Imax/Imin; momentum and energy stay accurate)
   std::map<std::string, std::string> warnings;
+
+  /// energy_drift relative to energy_scale (0 when the scene has no energy scale).
+  double drift_relative() const { return energy_scale > 0.0 ? energy_drift / energy_scale : 0.0; }
 };
 
 /// Simulates m from t = 0 to m.simulation.t_end.

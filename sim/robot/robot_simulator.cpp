@@ -1297,11 +1297,6 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
   return std::move(robot->result);
 }
 
-double drift_of(const RobotRunResult& r) {
-  const RobotMonitors& m = r.monitors;
-  return m.energy_scale > 0.0 ? m.energy_drift / m.energy_scale : 0.0;
-}
-
 }  // namespace
 
 RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& options) {
@@ -1316,8 +1311,8 @@ RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& opt
   // Auto checks its run: a completed run that missed the accuracy is rerun once, tighter
   // (method_choice.hpp, refine_choice); the cost reported is both runs'.
   if (automatic && result.run.status == reduced::RunStatus::kCompleted &&
-      pr::needs_rerun(choice, drift_of(result))) {
-    choice = pr::refine_choice(choice, drift_of(result));
+      pr::needs_rerun(choice, result.monitors.drift_relative())) {
+    choice = pr::refine_choice(choice, result.monitors.drift_relative());
     apply_to_scene(choice, &chosen, &model);
     const ode::SolverCounters first = result.run.cost.solver;
     result = run_once(chosen, model, options, automatic, choice);

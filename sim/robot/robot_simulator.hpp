@@ -54,6 +54,9 @@ struct RobotMonitors {
   double internal_stiffness = 0.0, contact_stiffness = 0.0;  ///< used [N/m]
   bool method_auto = false;                                  ///< the scene's solver was "auto"
   pseudorigid::MethodChoice method_choice;                   ///< what it chose (when method_auto)
+
+  /// energy_drift relative to energy_scale (0 when the scale is 0).
+  double drift_relative() const { return energy_scale > 0.0 ? energy_drift / energy_scale : 0.0; }
 };
 
 struct RobotRunResult {
