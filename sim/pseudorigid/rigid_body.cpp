@@ -32,11 +32,18 @@ void rigid_rotation_drift(const Body& b, double h, ode::Vec& y, int r) {
   // Principal-frame angular momentum; each sub-flow turns the body about one principal axis
   // k by h_k L_k / I_k, which leaves L_k and the world L unchanged.
   Vector3d lp = axes.transpose() * (q.toRotationMatrix().transpose() * L);
+  // One sine and cosine per sub-flow, of the half angle: the quaternion's, and the turn of lp
+  // from them by the double-angle formulas.
   auto turn = [&](int k, double tau) {
-    const double angle = tau * lp[k] / moments[k];
-    const Eigen::AngleAxisd rot(angle, Vector3d::Unit(k));
-    lp = rot.inverse() * lp;
-    q = q * Quaterniond(Eigen::AngleAxisd(angle, axes.col(k)));
+    const double half = 0.5 * tau * lp[k] / moments[k];
+    const double s = std::sin(half), c = std::cos(half);
+    const double sa = 2.0 * s * c, ca = (c - s) * (c + s);
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double li = lp[i], lj = lp[j];
+    lp[i] = ca * li + sa * lj;  // lp in the turned body frame: R_k(angle)^T lp
+    lp[j] = ca * lj - sa * li;
+    const Vector3d a = s * axes.col(k);
+    q = q * Quaterniond(c, a.x(), a.y(), a.z());
   };
   turn(0, 0.5 * h);
   turn(1, 0.5 * h);

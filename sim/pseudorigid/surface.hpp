@@ -26,6 +26,34 @@ namespace pronk::pseudorigid {
 
 enum class SurfaceType { kPlane, kLine, kPoint };
 
+/// The components of u a surface of this type with unit direction d constrains, P u: (d.u) d
+/// (plane), u - (d.u) d (line), u (point); P is never formed.
+inline Eigen::Vector3d project_onto(SurfaceType type, const Eigen::Vector3d& d,
+                                    const Eigen::Vector3d& u) {
+  switch (type) {
+    case SurfaceType::kPlane:
+      return d.dot(u) * d;
+    case SurfaceType::kLine:
+      return u - d.dot(u) * d;
+    case SurfaceType::kPoint:
+      break;
+  }
+  return u;
+}
+
+/// P as a matrix (the Jacobian's blocks).
+inline Eigen::Matrix3d projector(SurfaceType type, const Eigen::Vector3d& d) {
+  switch (type) {
+    case SurfaceType::kPlane:
+      return d * d.transpose();
+    case SurfaceType::kLine:
+      return Eigen::Matrix3d::Identity() - d * d.transpose();
+    case SurfaceType::kPoint:
+      break;
+  }
+  return Eigen::Matrix3d::Identity();
+}
+
 struct Surface {
   std::string name;
   SurfaceType type = SurfaceType::kPlane;

@@ -243,22 +243,13 @@ bool MechanismSystem::surface_gap(size_t si, const NodeRef& n, const ode::Vec& y
       s.body >= 0 ? node_position(NodeRef{NodeRef::Kind::kGhost, s.ghost}, y) : s.point;
   e.dir = s.body >= 0 ? Vector3d(frames_[s.body].rotation * in.direction) : in.direction;
   e.r = node_position(n, y) - p;
-  switch (in.type) {
-    case SurfaceType::kPlane: {
-      const double h = e.dir.dot(e.r);
-      if (h >= 0.0 && !in.bilateral) return false;
-      e.proj = e.dir * e.dir.transpose();
-      e.penetration = std::abs(h);
-      break;
-    }
-    case SurfaceType::kLine:
-      e.proj = Matrix3d::Identity() - e.dir * e.dir.transpose();
-      e.penetration = (e.proj * e.r).norm();
-      break;
-    case SurfaceType::kPoint:
-      e.proj = Matrix3d::Identity();
-      e.penetration = e.r.norm();
-      break;
+  e.type = in.type;
+  if (in.type == SurfaceType::kPlane) {
+    const double h = e.dir.dot(e.r);
+    if (h >= 0.0 && !in.bilateral) return false;
+    e.penetration = std::abs(h);
+  } else {
+    e.penetration = e.project(e.r).norm();
   }
   return true;
 }
@@ -277,7 +268,7 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(size_t si, const Node
   }
   if (!surface_gap(si, n, y, e)) return e;
   e.active = true;
-  e.force = -e.proj * (s.stiffness * e.r + s.damping * e.v);
+  e.force = -e.project(s.stiffness * e.r + s.damping * e.v);
   if (s.friction > 0.0) {  // grounded planes only (the loader enforces it)
     e.normal = std::max(0.0, e.dir.dot(e.force));
     const Vector3d vt = e.v - e.dir * e.dir.dot(e.v);
@@ -291,22 +282,18 @@ MechanismSystem::SurfaceEval MechanismSystem::eval_surface(size_t si, const Node
 
 namespace {
 
-/// A body-attached surface's projection P onto its constrained components and its
-/// direction's torque tau = -dU/dtheta [N m] for a node at r from the surface's ghost point
-/// (in: its run-time inputs; dir: the world direction); false when a one-sided plane is not
-/// touched.
-bool attached_projection(const Surface& s, const SurfaceInputs& in, const Vector3d& dir,
-                         const Vector3d& r, Matrix3d& proj, Vector3d& tau) {
-  proj = Matrix3d::Identity();
+/// A body-attached surface's direction torque tau = -dU/dtheta [N m] for a node at r from the
+/// surface's ghost point (in: its run-time inputs; dir: the world direction); false when a
+/// one-sided plane is not touched.
+bool attached_torque(const Surface& s, const SurfaceInputs& in, const Vector3d& dir,
+                     const Vector3d& r, Vector3d& tau) {
   tau = Vector3d::Zero();
   switch (in.type) {
     case SurfaceType::kPlane:
       if (dir.dot(r) >= 0.0 && !in.bilateral) return false;
-      proj = dir * dir.transpose();
       tau = -s.stiffness * dir.dot(r) * dir.cross(r);
       break;
     case SurfaceType::kLine:
-      proj = Matrix3d::Identity() - dir * dir.transpose();
       tau = s.stiffness * dir.dot(r) * dir.cross(r);
       break;
     case SurfaceType::kPoint:
@@ -334,10 +321,9 @@ void MechanismSystem::attached_surface_forces(size_t si, const NodeRef& n, const
   const Vector3d v = set == ForceSet::kConservative
                          ? Vector3d::Zero()
                          : Vector3d(node_velocity(n, y) - node_velocity(g, y));
-  Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the direction [N m]
-  if (!attached_projection(s, in, dir, r, proj, tau)) return;
-  const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
+  if (!attached_torque(s, in, dir, r, tau)) return;
+  const Vector3d force = -project_onto(in.type, dir, s.stiffness * r + s.damping * v);
   if (n.kind == NodeRef::Kind::kMass) {
     out.emplace_back(n.index, force);
   } else if (n.kind == NodeRef::Kind::kGhost) {
@@ -541,6 +527,15 @@ const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode
   return k;
 }
 
+Matrix3d MechanismSystem::frame_inverse_inertia(size_t b) const {
+  const RigidState& k = rigid_[b];
+  const Matrix3d& rot = frames_[b].rotation;
+  // The memo's when it was computed at this rotation (the same bits as computing it here;
+  // a NaN key: never computed).
+  if (!std::isnan(k.key[0]) && k.rotation == rot) return k.inverse_inertia;
+  return rigid_inverse_inertia(m_.bodies[b], rot);
+}
+
 bool MechanismSystem::rigid_node(const NodeRef& n) const {
   return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
 }
@@ -556,10 +551,9 @@ void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const od
   const Vector3d v = set == ForceSet::kConservative
                          ? Vector3d::Zero()
                          : Vector3d(node_velocity(n, y) - node_velocity(g, y));
-  Matrix3d proj;
   Vector3d tau;  // -dU/dtheta through the turning direction [N m]
-  if (!attached_projection(s, in, dir, r, proj, tau)) return;
-  const Vector3d force = -proj * (s.stiffness * r + s.damping * v);
+  if (!attached_torque(s, in, dir, r, tau)) return;
+  const Vector3d force = -project_onto(in.type, dir, s.stiffness * r + s.damping * v);
   apply(n, force);
   apply(g, -force);
   torque_[s.body] += tau;
@@ -858,7 +852,7 @@ double MechanismSystem::kinetic_energy(const ode::Vec& y) const {
     const int r = rot_[b];
     if (r < 0) continue;
     const Vector3d l = seg(y, r + 4);
-    k += 0.5 * l.dot(rigid_inverse_inertia(m_.bodies[b], frames_[b].rotation) * l);
+    k += 0.5 * l.dot(frame_inverse_inertia(b) * l);
   }
   return k;
 }
@@ -961,7 +955,8 @@ void MechanismSystem::jacobian(double t, const ode::Vec& y,
     for (const NodeRef& n : held_nodes(si)) {
       const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
       if (!e.active) continue;
-      Matrix3d kx = -s.stiffness * e.proj, kv = -s.damping * e.proj;
+      const Matrix3d proj = projector(e.type, e.dir);
+      Matrix3d kx = -s.stiffness * proj, kv = -s.damping * proj;
       if (e.normal > 0.0) {
         // F_t = -mu N g(v), g = v_t / w, w = sqrt(|v_t|^2 + v_s^2), v_t = P v with
         // P = 1 - n n^T; dN/dx = -k n^T, dN/dv = -b n^T (n = dir, penetrating);
@@ -1082,7 +1077,7 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     const int r = rot_[b];
     if (r < 0) continue;
     const Vector3d l = seg(y, r + 4);
-    e.kinetic += 0.5 * l.dot(rigid_inverse_inertia(m_.bodies[b], frames_[b].rotation) * l);
+    e.kinetic += 0.5 * l.dot(frame_inverse_inertia(b) * l);
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
   for (size_t i = 0; i < m_.connections.size(); ++i) {
@@ -1108,7 +1103,7 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     for (const NodeRef& n : held_nodes(i)) {
       const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
       if (!ev.active) continue;
-      e.contact += 0.5 * s.stiffness * (ev.proj * ev.r).squaredNorm();
+      e.contact += 0.5 * s.stiffness * ev.project(ev.r).squaredNorm();
       mon.max_penetration = std::max(mon.max_penetration, ev.penetration);
       if (surface_max != nullptr) (*surface_max)[i] = std::max((*surface_max)[i], ev.force.norm());
     }
@@ -1140,7 +1135,7 @@ PowerFlows MechanismSystem::power(const ode::Vec& y) const {
     const Surface& s = m_.surfaces[si];
     for (const NodeRef& n : held_nodes(si)) {
       const SurfaceEval e = eval_surface(si, n, y, ForceSet::kAll);
-      if (e.active) p.dissipated += s.damping * (e.proj * e.v).dot(e.v) - e.friction.dot(e.v);
+      if (e.active) p.dissipated += s.damping * e.project(e.v).dot(e.v) - e.friction.dot(e.v);
     }
   }
   for (const BodyForce& f : m_.body_forces) {

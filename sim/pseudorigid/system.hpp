@@ -186,6 +186,9 @@ class MechanismSystem final : public ode::MechanicalSystem {
   /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
   /// rotation states, compared exactly: one RHS reads them for every ghost point).
   const RigidState& rigid_state(int b, const ode::Vec& y) const;
+  /// Rigid body b's world inverse inertia in the attitude of the last frames_ (from the
+  /// rigid_pose memo when that is at the same rotation).
+  Eigen::Matrix3d frame_inverse_inertia(size_t b) const;
   /// rigid_state without the angular velocity (rotation and world inverse inertia, memoised
   /// on the quaternion alone; omega is not current in the result).
   const RigidState& rigid_pose(int b, const ode::Vec& y) const;
@@ -206,13 +209,15 @@ class MechanismSystem final : public ode::MechanicalSystem {
   /// Surface force on node n with projector and rotation data; returns force.
   struct SurfaceEval {
     bool active = false;
+    SurfaceType type = SurfaceType::kPlane;  ///< what the surface constrains (project())
     Eigen::Vector3d force = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d proj = Eigen::Matrix3d::Zero();
     Eigen::Vector3d r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
     Eigen::Vector3d dir = Eigen::Vector3d::Zero();
     double penetration = 0.0;
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< friction part of force [N]
     double normal = 0.0;  ///< normal force N >= 0 the friction scales with [N]
+    /// u's constrained components P u: along dir (plane), across it (line), all (point).
+    Eigen::Vector3d project(const Eigen::Vector3d& u) const { return project_onto(type, dir, u); }
   };
   SurfaceEval eval_surface(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
   /// The geometry part of eval_surface (dir, r, proj, penetration into e); false when a
