@@ -21,6 +21,7 @@ struct SurfaceInputs {
   /// Unit normal (plane) or direction (line); body frame when attached (Surface::direction).
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
   bool holds = true;  ///< false: the surface constrains none of its nodes
+  bool operator==(const SurfaceInputs&) const = default;
 };
 
 struct MechanismInputs {

@@ -447,10 +447,13 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) force_.segment<3>(3 * j) = m_.masses[j].mass * m_.gravity;
   if (any_rigid_) std::fill(torque_.begin(), torque_.end(), Vector3d::Zero());
+  const bool memo = set == ForceSet::kConservative;  // (GeometryMemo)
+  if (memo) begin_memo(y);
   bool zero_length = false;
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    if (memo) memo_.separation[i] = d;
     const Vector3d v = set == ForceSet::kConservative && c.kind != ConnectionClass::kActuator
                            ? Vector3d::Zero()
                            : Vector3d(node_velocity(c.a, y) - node_velocity(c.b, y));
@@ -463,14 +466,23 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
   if (zero_length) ++zero_length_;
   for (size_t si = 0; si < m_.surfaces.size(); ++si) {
     const Surface& s = m_.surfaces[si];
+    // observe() reads the pairs whose force is the conservative one.
+    const bool known = memo && s.damping == 0.0 && s.friction == 0.0;
     for (const NodeRef& n : held_nodes(si)) {
+      PairSeen* seen = memo ? &memo_.pairs.emplace_back() : nullptr;
       if (s.body < 0) {
         const SurfaceEval e = eval_surface(si, n, y, set);
         if (e.active) apply(n, e.force);
+        if (known && e.active) {
+          *seen = {true, true, e.penetration, e.project(e.r).squaredNorm(), e.force.norm()};
+        } else if (known) {
+          seen->known = true;
+        }
         continue;
       }
       if (rot_[s.body] >= 0) {
-        rigid_surface_forces(si, n, y, set);
+        if (known) seen->known = true;
+        rigid_surface_forces(si, n, y, set, known ? seen : nullptr);
         continue;
       }
       attached_.clear();  // (an inactive plane adds nothing)
@@ -492,6 +504,27 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
     dydt.segment<3>(6 * j + 3) = force_.segment<3>(3 * j);
   }
   if (any_rigid_) rigid_rates(y, dydt);
+  memo_.valid = memo;
+}
+
+void MechanismSystem::begin_memo(const ode::Vec& y) const {
+  memo_.valid = false;
+  memo_.y = y;
+  memo_.surfaces = in_->surfaces;
+  memo_.separation.resize(m_.connections.size());
+  memo_.pairs.clear();
+}
+
+bool MechanismSystem::memo_holds(const ode::Vec& y) const {
+  if (!memo_.valid || memo_.y.size() != y.size()) return false;
+  for (size_t j = 0; j < m_.masses.size(); ++j) {
+    const int i = 6 * static_cast<int>(j);
+    if (memo_.y.segment<3>(i) != y.segment<3>(i)) return false;
+  }
+  for (int r : rot_) {
+    if (r >= 0 && memo_.y.segment<4>(r) != y.segment<4>(r)) return false;
+  }
+  return memo_.surfaces == in_->surfaces;
 }
 
 void MechanismSystem::rigid_rates(const ode::Vec& y, ode::Vec& dydt) const {
@@ -541,7 +574,7 @@ bool MechanismSystem::rigid_node(const NodeRef& n) const {
 }
 
 void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
-                                           ForceSet set) const {
+                                           ForceSet set, PairSeen* seen) const {
   const Surface& s = m_.surfaces[si];
   const SurfaceInputs& in = in_->surfaces[si];
   const Matrix3d& rot = frames_[s.body].rotation;
@@ -557,6 +590,13 @@ void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const od
   apply(n, force);
   apply(g, -force);
   torque_[s.body] += tau;
+  if (seen != nullptr) {  // surface_gap's and observe()'s expressions, bit for bit
+    const Vector3d pr = project_onto(in.type, dir, r);
+    seen->touching = true;
+    seen->penetration = in.type == SurfaceType::kPlane ? std::abs(dir.dot(r)) : pr.norm();
+    seen->projected2 = pr.squaredNorm();
+    seen->force = force.norm();
+  }
 }
 
 void MechanismSystem::add_node_force(const NodeRef& n, const Vector3d& f, const ode::Vec& y,
@@ -1080,10 +1120,12 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
     e.kinetic += 0.5 * l.dot(frame_inverse_inertia(b) * l);
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
+  const bool hit = memo_holds(y);  // the last conservative evaluation was at y's positions
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const double l0 = in_->rest_length[i];
-    const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
+    const Vector3d d =
+        hit ? memo_.separation[i] : Vector3d(node_position(c.a, y) - node_position(c.b, y));
     const double u = connection_energy(c, l0, d);
     switch (c.kind) {
       case ConnectionClass::kInternal:
@@ -1098,14 +1140,23 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
         break;
     }
   }
+  size_t pair = 0;
   for (size_t i = 0; i < m_.surfaces.size(); ++i) {
     const Surface& s = m_.surfaces[i];
     for (const NodeRef& n : held_nodes(i)) {
-      const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
-      if (!ev.active) continue;
-      e.contact += 0.5 * s.stiffness * ev.project(ev.r).squaredNorm();
-      mon.max_penetration = std::max(mon.max_penetration, ev.penetration);
-      if (surface_max != nullptr) (*surface_max)[i] = std::max((*surface_max)[i], ev.force.norm());
+      PairSeen p;
+      if (hit && memo_.pairs[pair].known) {
+        p = memo_.pairs[pair];
+      } else {
+        const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
+        if (ev.active)
+          p = {true, true, ev.penetration, ev.project(ev.r).squaredNorm(), ev.force.norm()};
+      }
+      ++pair;
+      if (!p.touching) continue;
+      e.contact += 0.5 * s.stiffness * p.projected2;
+      mon.max_penetration = std::max(mon.max_penetration, p.penetration);
+      if (surface_max != nullptr) (*surface_max)[i] = std::max((*surface_max)[i], p.force);
     }
   }
   if (energies != nullptr) *energies = e;

@@ -24,6 +24,14 @@
 
 namespace pronk::pseudorigid {
 
+/// One held (surface, node) pair as observe() reads it: known (its force does not depend on
+/// velocities, so the conservative evaluation's is the whole force), touching, penetration
+/// [m], |P r|^2 [m^2] (the contact energy's) and |F| [N].
+struct PairSeen {
+  bool known = false, touching = false;
+  double penetration = 0.0, projected2 = 0.0, force = 0.0;
+};
+
 /// Accuracy monitors of one state.
 struct StateMonitors {
   double max_strain = 0.0;       ///< largest |l - l0| / l0 over internal springs
@@ -182,13 +190,20 @@ class MechanismSystem final : public ode::MechanicalSystem {
   /// Body-attached surface si on a rigid body: the force on node n, its reaction at the
   /// surface's ghost point and the torque of the turning direction (attached_surface_forces)
   /// into force_ and torque_.
-  void rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
+  /// With `seen`, what observe() needs of the pair into it (GeometryMemo).
+  void rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set,
+                            PairSeen* seen = nullptr) const;
   /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
   /// rotation states, compared exactly: one RHS reads them for every ghost point).
   const RigidState& rigid_state(int b, const ode::Vec& y) const;
   /// Rigid body b's world inverse inertia in the attitude of the last frames_ (from the
   /// rigid_pose memo when that is at the same rotation).
   Eigen::Matrix3d frame_inverse_inertia(size_t b) const;
+  /// memo_ holds for y: computed at y's positions (masses, quaternions) and the current
+  /// surface inputs.
+  bool memo_holds(const ode::Vec& y) const;
+  /// A conservative evaluation at y starts the memo over.
+  void begin_memo(const ode::Vec& y) const;
   /// rigid_state without the angular velocity (rotation and world inverse inertia, memoised
   /// on the quaternion alone; omega is not current in the result).
   const RigidState& rigid_pose(int b, const ode::Vec& y) const;
@@ -273,6 +288,19 @@ class MechanismSystem final : public ode::MechanicalSystem {
   mutable std::vector<BodyFrame> fit_frame_;
   mutable std::vector<bool> fit_valid_;
   mutable std::vector<RigidState> rigid_;
+  // What observe() reads of the last conservative evaluation (split Verlet's one RHS per
+  // step, whose positions the step keeps): each connection's separation, and per held
+  // (surface, node) pair whose force does not depend on velocities (no damper, no friction)
+  // whether it touches, its penetration, |P r|^2 and |F|; with the state and the surfaces'
+  // inputs they hold for (memo_holds: the positions and inputs compared exactly).
+  struct GeometryMemo {
+    ode::Vec y;
+    std::vector<SurfaceInputs> surfaces;
+    std::vector<Eigen::Vector3d> separation;
+    std::vector<PairSeen> pairs;
+    bool valid = false;
+  };
+  mutable GeometryMemo memo_;
   // Scratch, written before it is read within one call: the body frames at the y of the
   // last update_frames, the forces and torques an evaluation accumulates, the Jacobian's
   // triplets, one attached surface's forces, dissipate()'s momenta before its updates. One
