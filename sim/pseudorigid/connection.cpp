@@ -36,6 +36,7 @@ ConnectionForce connection_force(const Connection& c, double rest_length, const 
                                  const Eigen::Vector3d& v, double epsilon, bool derivatives) {
   ConnectionForce out;
   const double l = d.norm();
+  out.length = l;
   const bool has_dir = l >= epsilon;
   const Eigen::Vector3d e = has_dir ? Eigen::Vector3d(d / l) : Eigen::Vector3d::Zero();
 
@@ -100,7 +101,12 @@ ConnectionForce connection_force(const Connection& c, double rest_length, const 
 
 double connection_energy(const Connection& c, double rest_length, const Eigen::Vector3d& d) {
   if (c.kind == ConnectionClass::kActuator || c.stiffness == 0.0) return 0.0;
-  const double stretch = rest_length == 0.0 ? d.norm() : d.norm() - rest_length;
+  return connection_energy_at(c, rest_length, d.norm());
+}
+
+double connection_energy_at(const Connection& c, double rest_length, double length) {
+  if (c.kind == ConnectionClass::kActuator || c.stiffness == 0.0) return 0.0;
+  const double stretch = rest_length == 0.0 ? length : length - rest_length;
   return 0.5 * c.stiffness * stretch * stretch;
 }
 

@@ -41,6 +41,7 @@ struct ConnectionForce {
   Eigen::Matrix3d d_dx = Eigen::Matrix3d::Zero();         ///< dF/dd [N/m]
   Eigen::Matrix3d d_dv = Eigen::Matrix3d::Zero();         ///< dF/dv [N s/m]
   bool zero_length = false;                               ///< the zero-length rule dropped a term
+  double length = 0.0;                                    ///< |d| [m]
 };
 
 /// Evaluates the connection law with rest length l0 = rest_length [m] (the run's, in place of
@@ -51,5 +52,7 @@ ConnectionForce connection_force(const Connection& c, double rest_length, const 
 
 /// Stored energy of the spring with rest length rest_length [m] [J] (0 for actuators).
 double connection_energy(const Connection& c, double rest_length, const Eigen::Vector3d& d);
+/// The same at a known length |d| [m] (bit for bit: connection_energy is this at d.norm()).
+double connection_energy_at(const Connection& c, double rest_length, double length);
 
 }  // namespace pronk::pseudorigid

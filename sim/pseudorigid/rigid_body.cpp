@@ -24,18 +24,20 @@ void principal_axes(const Matrix3d& inertia, Vector3d* moments, Matrix3d* axes) 
   if (axes->determinant() < 0.0) axes->col(2) *= -1.0;
 }
 
-void rigid_rotation_drift(const Body& b, double h, ode::Vec& y, int r) {
+void rigid_rotation_drift(const Body& b, double h, ode::Vec& y, int r, const Matrix3d* rotation) {
   const Vector3d& moments = b.principal_moments;
   const Matrix3d& axes = b.principal_axes;
   Quaterniond q = rigid_quaternion(y, r);
   const Vector3d L = y.segment<3>(r + 4);
   // Principal-frame angular momentum; each sub-flow turns the body about one principal axis
   // k by h_k L_k / I_k, which leaves L_k and the world L unchanged.
-  Vector3d lp = axes.transpose() * (q.toRotationMatrix().transpose() * L);
+  const Matrix3d rot = rotation != nullptr ? *rotation : q.toRotationMatrix();
+  Vector3d lp = axes.transpose() * (rot.transpose() * L);
   // One sine and cosine per sub-flow, of the half angle: the quaternion's, and the turn of lp
   // from them by the double-angle formulas.
   auto turn = [&](int k, double tau) {
     const double half = 0.5 * tau * lp[k] / moments[k];
+    if (half == 0.0) return;  // no turn (no momentum about k): identity, bit for bit
     const double s = std::sin(half), c = std::cos(half);
     const double sa = 2.0 * s * c, ca = (c - s) * (c + s);
     const int i = (k + 1) % 3, j = (k + 2) % 3;

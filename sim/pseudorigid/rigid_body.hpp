@@ -47,7 +47,9 @@ void rigid_quaternion_rate(const ode::Vec& y, int r, const Eigen::Vector3d& omeg
 
 /// Method verlet's drift of the rotation over h [s] at fixed L (see the file comment):
 /// updates the quaternion y[r..r+3] (normalised on return).
-void rigid_rotation_drift(const Body& b, double h, ode::Vec& y, int r);
+/// `rotation`: rigid_rotation(y, r), when the caller has it (else computed here).
+void rigid_rotation_drift(const Body& b, double h, ode::Vec& y, int r,
+                          const Eigen::Matrix3d* rotation = nullptr);
 
 /// Principal moments and axes (columns, a proper rotation) of the body's inertia tensor.
 void principal_axes(const Eigen::Matrix3d& inertia, Eigen::Vector3d* moments,

@@ -170,6 +170,16 @@ class MechanismRun final : public run::HybridModel, public ode::StepObserver {
 };
 
 ode::SolverOptions MechanismRun::begin(const ode::Vec& y) {
+  // The samples' storage at once (a run that stops early keeps the capacity).
+  const double samples = std::floor(opt_.t_end / opt_.output_interval) + 2.0;
+  if (samples > 0.0 && samples < 1e7) {
+    const auto n = static_cast<size_t>(samples);
+    out_.t.reserve(n);
+    out_.y.reserve(n);
+    out_.energies.reserve(n);
+    out_.dissipated.reserve(n);
+    out_.actuator_work.reserve(n);
+  }
   record(0.0, y, 0.0, 0.0);
   monitor(y);
   const Energies e0 = out_.energies.front();

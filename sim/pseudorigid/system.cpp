@@ -79,14 +79,14 @@ MechanismSystem::MechanismSystem(const Mechanism& m, std::unique_ptr<const Mecha
 
 namespace {
 
-/// |l - l0| / l0 of a connection with rest length l0 > 0 and separation d; u, when given, is
+/// |l - l0| / l0 of a connection with rest length l0 > 0 and length l; u, when given, is
 /// its stored energy k (l - l0)^2 / 2, from which |l - l0| follows without a second norm.
-double connection_strain(const Connection& c, double l0, const Vector3d& d, double u = -1.0) {
+double connection_strain(const Connection& c, double l0, double l, double u = -1.0) {
   if (c.stiffness > 0.0) {
-    if (u < 0.0) u = connection_energy(c, l0, d);
+    if (u < 0.0) u = connection_energy_at(c, l0, l);
     return std::sqrt(2.0 * u / c.stiffness) / l0;
   }
-  return std::abs(d.norm() - l0) / l0;
+  return std::abs(l - l0) / l0;
 }
 
 }  // namespace
@@ -453,12 +453,12 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    if (memo) memo_.separation[i] = d;
     const Vector3d v = set == ForceSet::kConservative && c.kind != ConnectionClass::kActuator
                            ? Vector3d::Zero()
                            : Vector3d(node_velocity(c.a, y) - node_velocity(c.b, y));
     const ConnectionForce cf =
         connection_force(c, in_->rest_length[i], d, v, m_.simulation.zero_length_epsilon, false);
+    if (memo) memo_.length[i] = cf.length;
     zero_length = zero_length || cf.zero_length;
     apply(c.a, cf.force);
     apply(c.b, -cf.force);
@@ -474,14 +474,14 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
         const SurfaceEval e = eval_surface(si, n, y, set);
         if (e.active) apply(n, e.force);
         if (known && e.active) {
-          *seen = {true, true, e.penetration, e.project(e.r).squaredNorm(), e.force.norm()};
-        } else if (known) {
-          seen->known = true;
+          *seen = {true, true, true, e.penetration, e.project(e.r).squaredNorm(), e.force.norm()};
+        } else if (memo) {
+          *seen = {known, true, e.active};
         }
         continue;
       }
       if (rot_[s.body] >= 0) {
-        if (known) seen->known = true;
+        if (known) seen->known = seen->geometric = true;
         rigid_surface_forces(si, n, y, set, known ? seen : nullptr);
         continue;
       }
@@ -511,7 +511,7 @@ void MechanismSystem::begin_memo(const ode::Vec& y) const {
   memo_.valid = false;
   memo_.y = y;
   memo_.surfaces = in_->surfaces;
-  memo_.separation.resize(m_.connections.size());
+  memo_.length.resize(m_.connections.size());
   memo_.pairs.clear();
 }
 
@@ -569,10 +569,6 @@ Matrix3d MechanismSystem::frame_inverse_inertia(size_t b) const {
   return rigid_inverse_inertia(m_.bodies[b], rot);
 }
 
-bool MechanismSystem::rigid_node(const NodeRef& n) const {
-  return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
-}
-
 void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const ode::Vec& y,
                                            ForceSet set, PairSeen* seen) const {
   const Surface& s = m_.surfaces[si];
@@ -619,7 +615,11 @@ void MechanismSystem::drift(double h, ode::Vec& y) const {
   const int nm = static_cast<int>(m_.masses.size());
   for (int j = 0; j < nm; ++j) y.segment<3>(6 * j) += h * (seg(y, 6 * j + 3) * inv_mass_[j]);
   for (size_t b = 0; b < m_.bodies.size(); ++b) {
-    if (rot_[b] >= 0) rigid_rotation_drift(m_.bodies[b], h, y, rot_[b]);
+    // (The rotation from the rigid_pose memo: the same expression, computed once per pose.)
+    const int b_int = static_cast<int>(b);
+    if (rot_[b] >= 0) {
+      rigid_rotation_drift(m_.bodies[b], h, y, rot_[b], &rigid_pose(b_int, y).rotation);
+    }
   }
 }
 
@@ -704,6 +704,8 @@ double MechanismSystem::dissipate(double /*t*/, double h, const ode::Vec& y_ref,
   dissipate_before_ = y;
   dissipate_connections(h, y);
   dissipate_surfaces(h, y);
+  // Nothing acted (a flight phase without dampers): the booking is zero.
+  if ((y.array() == dissipate_before_.array()).all()) return 0.0;
   return booked_dissipation(y_ref, dissipate_before_, y);
 }
 
@@ -1124,13 +1126,12 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const double l0 = in_->rest_length[i];
-    const Vector3d d =
-        hit ? memo_.separation[i] : Vector3d(node_position(c.a, y) - node_position(c.b, y));
-    const double u = connection_energy(c, l0, d);
+    const double l = hit ? memo_.length[i] : (node_position(c.a, y) - node_position(c.b, y)).norm();
+    const double u = connection_energy_at(c, l0, l);
     switch (c.kind) {
       case ConnectionClass::kInternal:
         e.internal += u;
-        if (l0 > 0.0) mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, d, u));
+        if (l0 > 0.0) mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, l, u));
         break;
       case ConnectionClass::kLeg:
         e.leg += u;
@@ -1144,15 +1145,17 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   for (size_t i = 0; i < m_.surfaces.size(); ++i) {
     const Surface& s = m_.surfaces[i];
     for (const NodeRef& n : held_nodes(i)) {
+      const PairSeen* seen = hit ? &memo_.pairs[pair] : nullptr;
+      ++pair;
       PairSeen p;
-      if (hit && memo_.pairs[pair].known) {
-        p = memo_.pairs[pair];
+      if (seen != nullptr && (seen->known || (seen->geometric && !seen->touching))) {
+        p = *seen;  // all of it, or that it does not touch
       } else {
         const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
-        if (ev.active)
-          p = {true, true, ev.penetration, ev.project(ev.r).squaredNorm(), ev.force.norm()};
+        if (ev.active) {
+          p = {true, true, true, ev.penetration, ev.project(ev.r).squaredNorm(), ev.force.norm()};
+        }
       }
-      ++pair;
       if (!p.touching) continue;
       e.contact += 0.5 * s.stiffness * p.projected2;
       mon.max_penetration = std::max(mon.max_penetration, p.penetration);
@@ -1212,7 +1215,7 @@ StateMonitors MechanismSystem::monitors(const ode::Vec& y) const {
     const double l0 = in_->rest_length[i];
     if (c.kind != ConnectionClass::kInternal || !(l0 > 0.0)) continue;
     const Vector3d d = node_position(c.a, y) - node_position(c.b, y);
-    mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, d));
+    mon.max_strain = std::max(mon.max_strain, connection_strain(c, l0, d.norm()));
   }
   SurfaceEval e;
   for (size_t si = 0; si < m_.surfaces.size(); ++si) {

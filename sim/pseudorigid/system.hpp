@@ -25,10 +25,13 @@
 namespace pronk::pseudorigid {
 
 /// One held (surface, node) pair as observe() reads it: known (its force does not depend on
-/// velocities, so the conservative evaluation's is the whole force), touching, penetration
-/// [m], |P r|^2 [m^2] (the contact energy's) and |F| [N].
+/// velocities, so the conservative evaluation's is the whole force), whether it touches
+/// (geometric: known from the positions alone), penetration [m], |P r|^2 [m^2] (the contact
+/// energy's) and |F| [N].
 struct PairSeen {
-  bool known = false, touching = false;
+  bool known = false;      ///< all fields valid
+  bool geometric = false;  ///< touching valid
+  bool touching = false;
   double penetration = 0.0, projected2 = 0.0, force = 0.0;
 };
 
@@ -185,7 +188,9 @@ class MechanismSystem final : public ode::MechanicalSystem {
   /// unless n is a ghost point of a rigid body, 1/M + (r x d) . I_w^-1 (r x d) there.
   double inverse_mass_along(const NodeRef& n, const ode::Vec& y, const Eigen::Vector3d& d) const;
   /// n is a ghost point of a rigid body.
-  bool rigid_node(const NodeRef& n) const;
+  bool rigid_node(const NodeRef& n) const {
+    return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
+  }
   void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
   /// Body-attached surface si on a rigid body: the force on node n, its reaction at the
   /// surface's ghost point and the torque of the turning direction (attached_surface_forces)
@@ -289,14 +294,14 @@ class MechanismSystem final : public ode::MechanicalSystem {
   mutable std::vector<bool> fit_valid_;
   mutable std::vector<RigidState> rigid_;
   // What observe() reads of the last conservative evaluation (split Verlet's one RHS per
-  // step, whose positions the step keeps): each connection's separation, and per held
+  // step, whose positions the step keeps): each connection's length, and per held
   // (surface, node) pair whose force does not depend on velocities (no damper, no friction)
   // whether it touches, its penetration, |P r|^2 and |F|; with the state and the surfaces'
   // inputs they hold for (memo_holds: the positions and inputs compared exactly).
   struct GeometryMemo {
     ode::Vec y;
     std::vector<SurfaceInputs> surfaces;
-    std::vector<Eigen::Vector3d> separation;
+    std::vector<double> length;
     std::vector<PairSeen> pairs;
     bool valid = false;
   };
