@@ -1123,6 +1123,7 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
   }
   for (const WorldForce& f : m_.world_forces) e.applied -= f.force.dot(node_position(f.node, y));
   const bool hit = memo_holds(y);  // the last conservative evaluation was at y's positions
+  if (hit) ++memo_hits_;
   for (size_t i = 0; i < m_.connections.size(); ++i) {
     const Connection& c = m_.connections[i];
     const double l0 = in_->rest_length[i];

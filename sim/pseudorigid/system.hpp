@@ -142,6 +142,9 @@ class MechanismSystem final : public ode::MechanicalSystem {
 
   /// RHS evaluations in which the zero-length rule fired.
   long zero_length_triggers() const { return zero_length_; }
+  /// observe() calls that read the last conservative evaluation (GeometryMemo) instead of
+  /// computing the positions' part again.
+  long memo_hits() const { return memo_hits_; }
   /// The run-time inputs it reads.
   const MechanismInputs& inputs() const { return *in_; }
 
@@ -321,6 +324,7 @@ class MechanismSystem final : public ode::MechanicalSystem {
   // A run statistic, counted by every RHS evaluation and read by nothing that computes:
   // zero_length_triggers().
   mutable long zero_length_ = 0;
+  mutable long memo_hits_ = 0;  ///< memo_hits()
 };
 
 /// Compares the analytic Jacobian at (t, y) with central differences of the

@@ -122,6 +122,55 @@ TEST_CASE("mechanism inputs act as the same change to the mechanism, bit for bit
   }
 }
 
+// observe() (energies, monitors, surface forces) reads the positions' part of the last
+// conservative evaluation (split Verlet's one RHS per step) when it is at the same positions
+// and surface inputs: the same numbers as a system that never evaluated, bit for bit; after the
+// inputs or a position change it computes them afresh.
+TEST_CASE("observe reads the conservative evaluation at the same positions, bit for bit",
+          "[pseudorigid]") {
+  for (const char* body : {"\"four_masses\"", "\"rigid\""}) {
+    INFO("body " << body);
+    const scene::Scene s =
+        io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json",
+                       {std::string("/pseudo_rigid/body=") + body, "/pseudo_rigid/leg_damping=2",
+                        "/pseudo_rigid/contact_damping=5"});
+    const robot::RobotModel r = robot::build_robot(s);
+    const ode::Vec y = moving_state(r);
+    MechanismInputs in(r.mechanism);
+    const MechanismSystem warm(r.mechanism, in), cold(r.mechanism, in);
+    auto same = [&](const ode::Vec& at) {
+      const Energies ew = warm.energies(at), ec = cold.energies(at);
+      CHECK(ew.total() == ec.total());
+      CHECK(ew.internal == ec.internal);
+      CHECK(ew.leg == ec.leg);
+      CHECK(ew.contact == ec.contact);
+      CHECK(warm.surface_forces(at) == cold.surface_forces(at));
+      return ew.contact;
+    };
+    ode::Vec f(y.size());
+    warm.conservative_rhs(0.0, y, f);
+    // The step's closing kick changes the momenta only: the memo holds.
+    ode::Vec y1 = y;
+    for (size_t j = 0; j < r.mechanism.masses.size(); ++j) y1.segment<3>(6 * j + 3) *= 0.5;
+    const double contact = same(y1);
+    CHECK(warm.memo_hits() == 2);  // energies and surface forces
+    CHECK(cold.memo_hits() == 0);
+    CHECK(contact > 0.0);  // the slides and the feet in the ground count
+    // A slide turned after the evaluation: computed afresh, and it matters.
+    in.surfaces[r.slide[0]].direction = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+    CHECK(same(y1) != contact);
+    CHECK(warm.memo_hits() == 2);
+    // A position moved after a new evaluation: computed afresh.
+    warm.conservative_rhs(0.0, y1, f);
+    ode::Vec y2 = y1;
+    y2[6 * r.foot[0] + 2] -= 1e-4;
+    same(y2);
+    CHECK(warm.memo_hits() == 2);
+    same(y1);
+    CHECK(warm.memo_hits() == 4);
+  }
+}
+
 TEST_CASE("mechanism inputs must be sized to the mechanism", "[pseudorigid]") {
   const scene::Scene s =
       io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json");
