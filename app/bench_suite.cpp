@@ -442,21 +442,30 @@ void set_fit(FidelityPoint& p, const reduced::StrideFitResult& f) {
 /// The full model's settings of every pseudo-rigid run of the ladder (see full_model_rung).
 constexpr const char* kFullModelSettings = R"({"legs": "force", "internal_stiffness": 1e6})";
 
+/// What a rung's run was: the model simulate() ran and its solver's counters.
+void set_ran(FidelityPoint& p, const RunResult& r) {
+  p.ran_model = std::string(scene::to_string(r.model));
+  p.rhs_evaluations = r.run.cost.solver.rhs_evaluations;
+  p.jacobians = r.run.cost.solver.jacobian_evaluations;
+}
+
 FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   FidelityPoint p;
   p.model = std::string(scene::to_string(s.model));
   p.pulse_duration = s.model == scene::ModelKind::kPulse ? s.pulse.duration : 0.0;
   p.t_end = s.simulation.duration;
   std::vector<double> walls, cpus;
-  reduced::RunResult r;
+  RunResult full;
   RunOptions opts;
   opts.record_trajectory = false;
   for (int i = 0; i < c.repeat; ++i) {
     const double c0 = thread_cpu();
-    r = simulate(s, opts).run;
+    full = simulate(s, opts);
     cpus.push_back(thread_cpu() - c0);
-    walls.push_back(r.cost.wall_time);
+    walls.push_back(full.run.cost.wall_time);
   }
+  const reduced::RunResult& r = full.run;
+  set_ran(p, full);
   p.status = std::string(reduced::to_string(r.status));
   p.wall_s = median(walls);
   p.cpu_s = median(cpus);
@@ -522,6 +531,7 @@ FidelityPoint full_model_rung(const scene::Scene& s, const BenchConfig& c, bool 
   p.cpu_s = thread_cpu() - c0;
   p.wall_s = r.run.cost.wall_time;
   p.status = std::string(reduced::to_string(r.run.status));
+  set_ran(p, r);
   p.cost_per_sim_s = p.cpu_s / std::max(r.run.t_end, 1e-9);
   p.strides = static_cast<long>(r.run.strides.size());
   double duty = 0, apex = 0;

@@ -73,6 +73,9 @@ struct FidelityPoint {
   double wall_s = 0.0;          ///< median [s]
   double cpu_s = 0.0;           ///< median CPU time [s]
   double cost_per_sim_s = 0.0;  ///< CPU time per simulated second [s/s]
+  std::string ran_model;        ///< the model simulate() ran (RunResult::model)
+  long rhs_evaluations = 0;     ///< the solver's right-hand sides (the timed run)
+  long jacobians = 0;           ///< the solver's Jacobians (the timed run; 0: explicit)
   long strides = 0;
   double mean_duty = 0.0;            ///< stance / stride time
   double mean_apex = 0.0;            ///< mean apex height over strides 2.. [m]

@@ -504,7 +504,7 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
     dydt.segment<3>(6 * j + 3) = force_.segment<3>(3 * j);
   }
   if (any_rigid_) rigid_rates(y, dydt);
-  memo_.valid = memo;
+  if (memo) memo_.valid = true;  // (another evaluation leaves it: it is keyed on its state)
 }
 
 void MechanismSystem::begin_memo(const ode::Vec& y) const {
