@@ -156,38 +156,41 @@ def section(d, figdir):
         rows.append(["satellite stiffness sweep 1e4 → 1e8 N/m, cost growth, CVODE",
                      ratio(sg["cvode_dense_analytic"]["ratio"]), "(issue 3: 124×)"])
     q = h["quad_hopper"]
-    qp = q.get("pronk", {})
     mj = q.get("mujoco_euler_1ms")
-    if qp.get("found", True) and "cost_per_sim_s" in qp:
-        qm = qp.get("method", "rodas4")
-        qs = verlet_setting(qp) if qm == "verlet" else f"{qp['norm']} norm tol {g(qp['tol'])}"
-        txt = (f"pronk {qm.upper()} {qs}: {ms(qp['cost_per_sim_s'] * 10)} "
-               f"per 10 s (energy error {g(qp['energy_error_rel'])})")
-        if mj is not None:
-            txt = ratio(q.get("pronk_over_mujoco_euler_1ms")) + f" ({txt}; MuJoCo Euler 1 ms: " \
-                  f"{ms(mj['cost_per_sim_s'] * 10)} per 10 s)"
+
+    def quad_text(run, rodas_setting, details, ratio_key, after=""):
+        """One quad hopper drop run: method, setting, cost per 10 s and details, after its
+        ratio to MuJoCo Euler 1 ms when the peer ran (`after` closes the bracket)."""
+        m = run.get("method", "rodas4")
+        setting = verlet_setting(run) if m == "verlet" else rodas_setting
+        txt = f"pronk {m.upper()} {setting}: {ms(run['cost_per_sim_s'] * 10)} per 10 s ({details})"
+        return txt if mj is None else ratio(q.get(ratio_key)) + f" ({txt}{after})"
+
+    def found(run):
+        return run.get("found", True) and "cost_per_sim_s" in run
+
+    qp = q.get("pronk", {})
+    if found(qp):
+        after = "" if mj is None else f"; MuJoCo Euler 1 ms: {ms(mj['cost_per_sim_s'] * 10)} per 10 s"
+        txt = quad_text(qp, f"{qp.get('norm')} norm tol {g(qp.get('tol', 0))}",
+                        f"energy error {g(qp['energy_error_rel'])}", "pronk_over_mujoco_euler_1ms",
+                        after)
         rows.append(["quad hopper drop: pronk time / MuJoCo Euler 1 ms time, per simulated second "
                      "(energy balance ≤ 1e-3 at every 1 ms sample)", txt, "≤ 1×"])
     qa = q.get("pronk_apex_balance", {})
-    if qa.get("found", True) and "cost_per_sim_s" in qa:
-        qm = qa.get("method", "rodas4")
-        qs = verlet_setting(qa) if qm == "verlet" else f"tol {g(qa['tol'])}"
-        txt = (f"pronk {qm.upper()} {qs}: {ms(qa['cost_per_sim_s'] * 10)} per 10 s (energy "
-               f"balance at the apexes {g(qa['energy_error_apex_rel'])}, at every sample "
-               f"{g(qa['energy_error_rel'])}; apex heights within "
-               f"{g(qa['apex_height_vs_reference_rel'])} of the drop of RODAS4 tol 1e-8)")
-        if mj is not None:
-            txt = ratio(q.get("pronk_apex_balance_over_mujoco_euler_1ms")) + f" ({txt})"
+    if found(qa):
+        txt = quad_text(qa, f"tol {g(qa.get('tol', 0))}",
+                        f"energy balance at the apexes {g(qa['energy_error_apex_rel'])}, at every "
+                        f"sample {g(qa['energy_error_rel'])}; apex heights within "
+                        f"{g(qa['apex_height_vs_reference_rel'])} of the drop of RODAS4 tol 1e-8",
+                        "pronk_apex_balance_over_mujoco_euler_1ms")
         rows.append(["quad hopper drop: the same, energy balance ≤ 1e-3 hop to hop (at the "
                      "flight apexes)", txt, "≤ 1×"])
     qr = q.get("pronk_rigid", {})
-    if qr.get("found", True) and "cost_per_sim_s" in qr:
-        qm = qr.get("method", "rodas4")
-        qs = verlet_setting(qr) if qm == "verlet" else f"tol {g(qr['tol'])}"
-        txt = (f"pronk {qm.upper()} {qs}: {ms(qr['cost_per_sim_s'] * 10)} per 10 s (energy "
-               f"error {g(qr['energy_error_rel'])}; the symmetric drop never turns the body)")
-        if mj is not None:
-            txt = ratio(q.get("pronk_rigid_over_mujoco_euler_1ms")) + f" ({txt})"
+    if found(qr):
+        txt = quad_text(qr, f"tol {g(qr.get('tol', 0))}",
+                        f"energy error {g(qr['energy_error_rel'])}; the symmetric drop never turns "
+                        "the body", "pronk_rigid_over_mujoco_euler_1ms")
         rows.append(["quad hopper drop with the body as one rigid body (`\"rigid\": true`): "
                      "pronk time / MuJoCo Euler 1 ms time, energy balance ≤ 1e-3 at every sample",
                      txt, "≤ 0.5×"])
