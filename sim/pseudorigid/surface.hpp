@@ -15,6 +15,7 @@
 // body, and the reaction acts on the body through that ghost point).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ inline Eigen::Vector3d project_onto(SurfaceType type, const Eigen::Vector3d& d,
       break;
   }
   return u;
+}
+
+/// How far a node at r from the surface violates it [m]: |d.r| for a plane, |P r| otherwise.
+inline double penetration_of(SurfaceType type, const Eigen::Vector3d& d, const Eigen::Vector3d& r) {
+  return type == SurfaceType::kPlane ? std::abs(d.dot(r)) : project_onto(type, d, r).norm();
 }
 
 /// P as a matrix (the Jacobian's blocks).

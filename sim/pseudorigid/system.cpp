@@ -244,13 +244,8 @@ bool MechanismSystem::surface_gap(size_t si, const NodeRef& n, const ode::Vec& y
   e.dir = s.body >= 0 ? Vector3d(frames_[s.body].rotation * in.direction) : in.direction;
   e.r = node_position(n, y) - p;
   e.type = in.type;
-  if (in.type == SurfaceType::kPlane) {
-    const double h = e.dir.dot(e.r);
-    if (h >= 0.0 && !in.bilateral) return false;
-    e.penetration = std::abs(h);
-  } else {
-    e.penetration = e.project(e.r).norm();
-  }
+  if (in.type == SurfaceType::kPlane && e.dir.dot(e.r) >= 0.0 && !in.bilateral) return false;
+  e.penetration = penetration_of(in.type, e.dir, e.r);
   return true;
 }
 
@@ -473,11 +468,7 @@ void MechanismSystem::evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) 
       if (s.body < 0) {
         const SurfaceEval e = eval_surface(si, n, y, set);
         if (e.active) apply(n, e.force);
-        if (known && e.active) {
-          *seen = {true, true, true, e.penetration, e.project(e.r).squaredNorm(), e.force.norm()};
-        } else if (memo) {
-          *seen = {known, true, e.active};
-        }
+        if (memo) *seen = known && e.active ? seen_of(e) : PairSeen{known, true, e.active};
         continue;
       }
       if (rot_[s.body] >= 0) {
@@ -513,6 +504,10 @@ void MechanismSystem::begin_memo(const ode::Vec& y) const {
   memo_.surfaces = in_->surfaces;
   memo_.length.resize(m_.connections.size());
   memo_.pairs.clear();
+}
+
+PairSeen MechanismSystem::seen_of(const SurfaceEval& e) {
+  return {true, true, true, e.penetration, e.project(e.r).squaredNorm(), e.force.norm()};
 }
 
 bool MechanismSystem::memo_holds(const ode::Vec& y) const {
@@ -587,11 +582,12 @@ void MechanismSystem::rigid_surface_forces(size_t si, const NodeRef& n, const od
   apply(g, -force);
   torque_[s.body] += tau;
   if (seen != nullptr) {  // surface_gap's and observe()'s expressions, bit for bit
-    const Vector3d pr = project_onto(in.type, dir, r);
-    seen->touching = true;
-    seen->penetration = in.type == SurfaceType::kPlane ? std::abs(dir.dot(r)) : pr.norm();
-    seen->projected2 = pr.squaredNorm();
-    seen->force = force.norm();
+    *seen = {true,
+             true,
+             true,
+             penetration_of(in.type, dir, r),
+             project_onto(in.type, dir, r).squaredNorm(),
+             force.norm()};
   }
 }
 
@@ -1153,9 +1149,7 @@ void MechanismSystem::observe(const ode::Vec& y, Energies* energies, StateMonito
         p = *seen;  // all of it, or that it does not touch
       } else {
         const SurfaceEval ev = eval_surface(i, n, y, ForceSet::kAll);
-        if (ev.active) {
-          p = {true, true, true, ev.penetration, ev.project(ev.r).squaredNorm(), ev.force.norm()};
-        }
+        if (ev.active) p = seen_of(ev);
       }
       if (!p.touching) continue;
       e.contact += 0.5 * s.stiffness * p.projected2;

@@ -243,6 +243,8 @@ class MechanismSystem final : public ode::MechanicalSystem {
     Eigen::Vector3d project(const Eigen::Vector3d& u) const { return project_onto(type, dir, u); }
   };
   SurfaceEval eval_surface(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
+  /// A touching pair's evaluation as observe() reads it (all fields known).
+  static PairSeen seen_of(const SurfaceEval& e);
   /// The geometry part of eval_surface (dir, r, proj, penetration into e); false when a
   /// one-sided plane is not touched. Needs frames_ current for a body-attached surface.
   bool surface_gap(size_t si, const NodeRef& n, const ode::Vec& y, SurfaceEval& e) const;

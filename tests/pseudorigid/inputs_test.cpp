@@ -35,6 +35,15 @@ ode::Vec moving_state(const robot::RobotModel& r) {
   return y;
 }
 
+/// pr_running's robot with the given body (a JSON string) and dampers on the legs and the
+/// ground contact, so that every kind of force acts.
+robot::RobotModel damped_robot(const char* body) {
+  return robot::build_robot(
+      io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json",
+                     {std::string("/pseudo_rigid/body=") + body, "/pseudo_rigid/leg_damping=2",
+                      "/pseudo_rigid/contact_damping=5"}));
+}
+
 /// What a run changes, made both in inputs and in the copy of the mechanism.
 void change(const robot::RobotModel& r, MechanismInputs& in, Mechanism& copy) {
   for (int c : r.leg_spring) {
@@ -96,11 +105,7 @@ TEST_CASE("mechanism inputs act as the same change to the mechanism, bit for bit
           "[pseudorigid]") {
   for (const char* body : {"\"four_masses\"", "\"rigid\""}) {
     INFO("body " << body);
-    const scene::Scene s =
-        io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json",
-                       {std::string("/pseudo_rigid/body=") + body, "/pseudo_rigid/leg_damping=2",
-                        "/pseudo_rigid/contact_damping=5"});
-    const robot::RobotModel r = robot::build_robot(s);
+    const robot::RobotModel r = damped_robot(body);
     REQUIRE(r.slide.size() >= 3);
     const ode::Vec y = moving_state(r);
     ode::Vec y1 = y;  // foot 0 leaves the ground during the step
@@ -130,11 +135,7 @@ TEST_CASE("observe reads the conservative evaluation at the same positions, bit 
           "[pseudorigid]") {
   for (const char* body : {"\"four_masses\"", "\"rigid\""}) {
     INFO("body " << body);
-    const scene::Scene s =
-        io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json",
-                       {std::string("/pseudo_rigid/body=") + body, "/pseudo_rigid/leg_damping=2",
-                        "/pseudo_rigid/contact_damping=5"});
-    const robot::RobotModel r = robot::build_robot(s);
+    const robot::RobotModel r = damped_robot(body);
     const ode::Vec y = moving_state(r);
     MechanismInputs in(r.mechanism);
     const MechanismSystem warm(r.mechanism, in), cold(r.mechanism, in);
