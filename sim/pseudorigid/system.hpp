@@ -229,7 +229,7 @@ class MechanismSystem final : public ode::MechanicalSystem {
                  const Eigen::Matrix3d& kv) const;
   void jac_rotation(const NodeRef& target, int body, const Eigen::Matrix3d& d) const;
   void jac_transfer(const NodeRef& target, const Eigen::Vector3d& f) const;
-  /// Surface force on node n with projector and rotation data; returns force.
+  /// A surface's force on node n with its geometry (type, direction, r) and velocity.
   struct SurfaceEval {
     bool active = false;
     SurfaceType type = SurfaceType::kPlane;  ///< what the surface constrains (project())
@@ -245,7 +245,7 @@ class MechanismSystem final : public ode::MechanicalSystem {
   SurfaceEval eval_surface(size_t si, const NodeRef& n, const ode::Vec& y, ForceSet set) const;
   /// A touching pair's evaluation as observe() reads it (all fields known).
   static PairSeen seen_of(const SurfaceEval& e);
-  /// The geometry part of eval_surface (dir, r, proj, penetration into e); false when a
+  /// The geometry part of eval_surface (dir, r, type, penetration into e); false when a
   /// one-sided plane is not touched. Needs frames_ current for a body-attached surface.
   bool surface_gap(size_t si, const NodeRef& n, const ode::Vec& y, SurfaceEval& e) const;
   /// Forces of body-attached surface si on node n as the exact gradient of its
