@@ -17,7 +17,7 @@ namespace pronk::robot::detail {
 
 using Eigen::Vector3d;
 
-/// The spring-leg leg layer (seed 2.8.1): the springs return the touchdown
+/// The spring-leg leg layer (Ridgely 2001, §2.8.1): the springs return the touchdown
 /// momentum, so the actuators are asked for the body controller's request minus
 /// the elastic rebound -2 m v_z. Wraps the unchanged body controller.
 class SpringReboundController final : public control::BodyController {

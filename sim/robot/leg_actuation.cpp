@@ -17,7 +17,7 @@ using Eigen::Vector3d;
 
 /// Leg controllers: a constant force along each leg for the stance duration T; with a
 /// force limit the pulse saturates, and with impulse feedback the actuator stays on until
-/// its delivered impulse reaches the allocation (seed 5.4). Sets the legs' forces and
+/// its delivered impulse reaches the allocation (Ridgely 2001, §5.4). Sets the legs' forces and
 /// switch-off times and the stride's peak force and angular impulse; returns the stance's
 /// end [s].
 double RobotRun::command_actuators(const control::StancePlan& plan, double t) {

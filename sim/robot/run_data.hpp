@@ -43,7 +43,7 @@ struct RunData {
   std::vector<double> stride_force;  ///< the stance's actuator forces, for the stride record [N]
   /// Spring legs: the actuators fire in the thrust phase, from the bottom of the stance (CoM
   /// velocity rising through zero) on, so a downward force lowers the takeoff speed and an
-  /// upward one raises it (seed fig. 2.13).
+  /// upward one raises it (Ridgely 2001, fig. 2.13).
   bool armed = false;
   std::vector<double> armed_force, armed_duration;
   Vector3d common_push = Vector3d::UnitZ();  ///< legs' push direction, body frame
