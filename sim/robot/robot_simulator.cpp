@@ -46,7 +46,7 @@ Com body_com(const RobotModel& m, const ode::Vec& y) {
   return c;
 }
 
-/// The spring-leg leg layer (seed 2.8.1): the springs return the touchdown
+/// The spring-leg leg layer (Ridgely 2001, §2.8.1): the springs return the touchdown
 /// momentum, so the actuators are asked for the body controller's request minus
 /// the elastic rebound -2 m v_z. Wraps the unchanged body controller.
 class SpringReboundController final : public control::BodyController {
@@ -468,7 +468,7 @@ struct RunData {
   std::vector<double> stride_force;  ///< the stance's actuator forces, for the stride record [N]
   /// Spring legs: the actuators fire in the thrust phase, from the bottom of the stance (CoM
   /// velocity rising through zero) on, so a downward force lowers the takeoff speed and an
-  /// upward one raises it (seed fig. 2.13).
+  /// upward one raises it (Ridgely 2001, fig. 2.13).
   bool armed = false;
   std::vector<double> armed_force, armed_duration;
   Vector3d common_push = Vector3d::UnitZ();  ///< legs' push direction, body frame
@@ -891,7 +891,7 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
 
 /// Leg controllers: a constant force along each leg for the stance duration T; with a
 /// force limit the pulse saturates, and with impulse feedback the actuator stays on until
-/// its delivered impulse reaches the allocation (seed 5.4). Sets the legs' forces and
+/// its delivered impulse reaches the allocation (Ridgely 2001, §5.4). Sets the legs' forces and
 /// switch-off times and the stride's peak force and angular impulse; returns the stance's
 /// end [s].
 double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
