@@ -1,4 +1,4 @@
-// Impulse allocation: the middle layer of the control hierarchy (seed 2.3,
+// Impulse allocation: the middle layer of the control hierarchy (Ridgely 2001, §2.3,
 // 2.5.3). Turns the body controller's net linear impulse P and angular impulse
 // H (both body frame) into per-leg linear impulses applied at the hips.
 #pragma once

@@ -1,5 +1,5 @@
 // Bad user input: one error type that names the file, the JSON Pointer, what
-// was expected and what was found (SPEC 8). The CLI maps it to exit code 2.
+// was expected and what was found (docs/reliability.md). The CLI maps it to exit code 2.
 #pragma once
 
 #include <stdexcept>

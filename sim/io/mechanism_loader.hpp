@@ -1,4 +1,4 @@
-// Reads a generic pseudo-rigid `mechanism` scene (SPEC 8) with the strict
+// Reads a generic pseudo-rigid `mechanism` scene (docs/pseudorigid.md) with the strict
 // reader of json_reader.hpp: unknown keys are errors and every error is an
 // io::InputError naming file, JSON Pointer, what was expected and what was found.
 //

@@ -1,4 +1,4 @@
-// Reads robot scenes from JSON with the error discipline of SPEC 8 and writes
+// Reads robot scenes from JSON with the error discipline of docs/reliability.md and writes
 // the resolved scene (every default made explicit) back to JSON.
 #pragma once
 

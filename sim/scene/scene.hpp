@@ -75,29 +75,29 @@ struct Controller {
   Gait gait = Gait::kPronk;
   std::vector<std::vector<int>> gait_groups;  ///< leg index groups for kAlternate
   /// Hop-height setpoint changes (time [s], new hop height [m]), sorted by time
-  /// (seed fig. 2.13). Used by the pseudo-rigid model; the reduced models ignore it.
+  /// (Ridgely 2001, fig. 2.13). Used by the pseudo-rigid model; the reduced models ignore it.
   std::vector<std::pair<double, double>> hop_height_changes;
 };
 
-/// Pulse model settings (seed 2.6).
+/// Pulse model settings (Ridgely 2001, §2.6).
 enum class PulseMode { kMaxForce, kDuration };
 struct Pulse {
   PulseMode mode = PulseMode::kMaxForce;
   double max_force = 60.0;           ///< per-leg force limit in max_force mode [N]
   double duration = 0.05;            ///< stance duration T in duration mode [s]
-  bool gravity_compensation = true;  ///< add m g T to the vertical impulse (seed 2.6.1)
+  bool gravity_compensation = true;  ///< add m g T to the vertical impulse (Ridgely 2001, §2.6.1)
 };
 
-/// Settings only the pseudo-rigid model uses (SPEC 3.2; seed 2.7-2.8). The
+/// Settings only the pseudo-rigid model uses (Ridgely 2001, §2.7-2.8; docs/full_model.md). The
 /// reduced models accept and ignore them. The ground is the plane z = 0, as
 /// in the reduced models (touchdown when the CoM falls through legs.length).
 struct PseudoRigid {
   /// Hips: ghost points (forces transferred to the four body masses) or dummy
-  /// masses tied to them (seed 4.3).
+  /// masses tied to them (Ridgely 2001, §4.3).
   enum class Hips { kGhost, kDummy };
   /// Legs: `force` = leg forces act at the hips only, no leg or foot is modelled
-  /// (seed 2.7); `spring` = a foot mass on a line through the hip (prismatic
-  /// leg) with a leg spring, damper and actuator in parallel (seed 2.8).
+  /// (Ridgely 2001, §2.7); `spring` = a foot mass on a line through the hip (prismatic
+  /// leg) with a leg spring, damper and actuator in parallel (Ridgely 2001, §2.8).
   enum class Legs { kForce, kSpring };
   /// Body: four masses held by six internal springs (the default, the body's flexibility
   /// resolved), or one rigid body with the same mass and inertia (sim/pseudorigid/rigid_body.hpp;
@@ -121,10 +121,10 @@ struct PseudoRigid {
   /// Leg actuator force limit [N]; 0 = unlimited. A saturated pulse delivers less
   /// than requested unless impulse_feedback keeps the actuator on.
   double actuator_max_force = 0.0;
-  /// Leg controllers close the loop on delivered impulse (seed 5.4): each actuator
+  /// Leg controllers close the loop on delivered impulse (Ridgely 2001, §5.4): each actuator
   /// stays on until the impulse it delivered reaches its allocation.
   bool impulse_feedback = false;
-  /// false: passive legs, the controller never acts (drop tests, seed fig. 2.11).
+  /// false: passive legs, the controller never acts (drop tests, Ridgely 2001, fig. 2.11).
   bool actuators = true;
   double friction = 0.0;        ///< Coulomb coefficient mu [-]; 0 = frictionless feet
   double slip_velocity = 1e-3;  ///< regularisation speed of the friction law [m/s]

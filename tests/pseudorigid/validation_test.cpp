@@ -1,7 +1,7 @@
-// Validation cases of SPEC 10 on the pseudo-rigid model: free satellite (10),
-// pendulum (11), energy exchange (9) and explicit instability (8), each against
-// an independent reference (closed-form solutions, Euler's equations
-// integrated separately, the elliptic-integral period).
+// Validation cases (numbered as in docs/pseudorigid.md) on the pseudo-rigid model: free satellite
+// (10), pendulum (11), energy exchange (9) and explicit instability (8), each against an
+// independent reference (closed-form solutions, Euler's equations integrated separately, the
+// elliptic-integral period).
 #include <cmath>
 
 #include <catch2/catch.hpp>

@@ -128,7 +128,8 @@ TEST_CASE("a stop request ends the map with the journal kept", "[map][journal]")
 // every trial; no trial is judged differently by the two models up to 27 %
 // duty, and every cell from 29 % on has disagreements (first at 29 % and 28 %).
 // Larger extra tilts lower it (18 % at 20 deg); below 18 % no row disagrees.
-TEST_CASE("seed 2.6.1: no impulse/pulse disagreement below ~30 % duty, some above", "[map][seed]") {
+TEST_CASE("Ridgely 2001, §2.6.1: no impulse/pulse disagreement below ~30 % duty, some above",
+          "[map][seed]") {
   TempDir d;
   const m::MapStudy st =
       m::load_map_study(std::string(PRONK_SOURCE_DIR) + "/studies/map_seed_duty.json");
