@@ -14,7 +14,7 @@ using Vec3 = Eigen::Vector3d;
 
 /// Which allocation scheme to use.
 enum class AllocationScheme {
-  /// Seed eq. 2.7-2.8 with the corrected H_y equation: P shared equally among
+  /// Ridgely 2001, eq. 2.7-2.8, with the corrected H_y equation: P shared equally among
   /// active legs, moments from per-leg additions Px=c ry, Py=0, Pz=a rx+b ry.
   /// Exact only for layouts symmetric about the CoM (Σrx = Σry = 0 over active legs).
   kSeed,

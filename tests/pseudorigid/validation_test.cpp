@@ -190,7 +190,7 @@ TEST_CASE("case 11: large-amplitude pendulum period vs the elliptic-integral per
 
 namespace {
 
-/// Seed case 9 / fig. 3.5, reduced to one vertical leg: a 1.5 kg body mass on a
+/// Case 9 (Ridgely 2001, fig. 3.5), reduced to one vertical leg: a 1.5 kg body mass on a
 /// 500 N/m leg spring to a 0.05 kg foot, dropped on a conservative ground plane.
 /// (The four-leg body version is the next test.)
 Mechanism drop_test(double rtol) {

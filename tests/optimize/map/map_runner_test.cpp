@@ -122,7 +122,7 @@ TEST_CASE("a stop request ends the map with the journal kept", "[map][journal]")
   CHECK(bad.validate().find("threads") != std::string::npos);
 }
 
-// Seed 2.6.1 with the shipped study: the seed's controller and gains, impulse vs
+// Ridgely 2001, §2.6.1, with the shipped study: the seed's controller and gains, impulse vs
 // pulse model, duty 10-50 % in steps of 1 %. Measured threshold (docs/maps.md): in the
 // rows with no and with 5 deg extra initial tilt the impulse model stabilizes
 // every trial; no trial is judged differently by the two models up to 27 %
