@@ -16,6 +16,24 @@
 
 namespace pronk::app {
 
+namespace {
+
+// A command-line error (an unknown flag, --threads 0) as the one line of any bad input,
+// instead of CLI11's two; exit code 2.
+int report_option_error(const CLI::ParseError& e) {
+  std::string what = e.what();
+  for (char& c : what) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  while (!what.empty() && what.back() == ' ') what.pop_back();
+  const io::InputError error("command line", "", "options as `pronk COMMAND --help` lists them",
+                             what);
+  std::cerr << "pronk: error: " << error.what() << "\n";
+  return 2;
+}
+
+}  // namespace
+
 int run_cli(int argc, const char* const* argv) {
   CLI::App app{
       "pronk: design and simulate robots that run by ballistic hops.\n"
@@ -44,8 +62,7 @@ int run_cli(int argc, const char* const* argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
+    return report_option_error(e);
   }
   return run_reporting_errors([&] {
     // Every command's --out is checked before any work: a path that cannot be a

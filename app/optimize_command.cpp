@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -34,6 +35,19 @@ extern "C" void on_sigint(int) {
   g_stop.store(true);
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
+
+// --rtol: a finite number > 0 (CLI::PositiveNumber lets nan through and, for inf, prints
+// the whole double range).
+const CLI::Validator kFinitePositive(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double x = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(x) || !(x > 0)) {
+        return "Value " + text + " is not a finite number > 0";
+      }
+      return "";
+    },
+    "RTOL > 0");
 
 int thread_count(int requested) {
   if (requested > 0) return requested;
@@ -70,7 +84,7 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--rtol", args.rtol, "Relative tolerance on another build (default 1e-6)")
-      ->check(CLI::PositiveNumber);
+      ->check(kFinitePositive);
   return cmd;
 }
 

@@ -6,10 +6,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto doc = pronk::fuzz::document(pronk::fuzz::text(data, size));
   if (!doc) return 0;
-  try {
+  pronk::fuzz::expect_only_input_errors([&] {
     const pronk::io::LoadedMechanism m = pronk::io::parse_mechanism(*doc, "fuzz.json");
     (void)pronk::io::parse_mechanism(m.resolved, "resolved.json");
-  } catch (const pronk::io::InputError&) {
-  }
+  });
   return 0;
 }

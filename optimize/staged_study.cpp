@@ -60,20 +60,14 @@ std::vector<Parameter> study_parameters(io::JsonReader& r, const json& doc, cons
     Parameter par;
     par.name = p.at("name").get<std::string>();
     par.pointer = p.at("pointer").get<std::string>();
-    json::json_pointer jp;
-    try {
-      jp = json::json_pointer(par.pointer);
-    } catch (const json::exception&) {
-      throw io::InputError(r.file(), at + "/pointer", "a JSON Pointer into the scene",
-                           "\"" + par.pointer + "\"");
-    }
-    if (!scene.contains(jp) || !scene.at(jp).is_number()) {
+    const json* target = io::find_pointer(scene, par.pointer);
+    if (par.pointer.empty() || target == nullptr || !target->is_number()) {
       throw io::InputError(r.file(), at + "/pointer",
                            "a pointer to a number of the scene format (see scene.resolved.json)",
                            "\"" + par.pointer + "\", which names no number of a scene");
     }
     const json& init = p.value("initial", json());
-    par.initial = init.is_number() ? init.get<double>() : scene.at(jp).get<double>();
+    par.initial = init.is_number() ? init.get<double>() : target->get<double>();
     out.push_back(par);
   }
   return out;
@@ -160,9 +154,7 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
   st.file = file;
   st.base_dir = base_dir;
   io::JsonReader r(doc, file, "");
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos)
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  st.name = r.path_name_or("name", "");  // the default output directory results/<name>
   if (doc.contains("model"))
     throw r.error("model", "a \"model\" in every stage, none at the top",
                   io::describe(doc["model"]));

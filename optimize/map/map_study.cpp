@@ -78,18 +78,13 @@ void parse_axis_kind(io::JsonReader& r, const std::string& kind, const json& sce
   if (kind == "pointer") {
     a.kind = AxisKind::kPointer;
     a.pointer = r.string_or("pointer", "");
-    json::json_pointer jp;
-    try {
-      jp = json::json_pointer(a.pointer);
-    } catch (const json::exception&) {
-      throw r.error("pointer", "a JSON Pointer into the scene", "\"" + a.pointer + "\"");
-    }
-    if (a.pointer.empty() || !scene_doc.contains(jp) || !scene_doc.at(jp).is_number()) {
-      throw r.error("pointer", "a pointer to a number of the resolved scene",
-                    "\"" + a.pointer + "\"" +
-                        (a.pointer.empty() || !scene_doc.contains(jp)
-                             ? " (no such value)"
-                             : " (" + io::describe(scene_doc.at(jp)) + ")"));
+    const json* target = io::find_pointer(scene_doc, a.pointer);
+    if (a.pointer.empty() || target == nullptr || !target->is_number()) {
+      throw r.error(
+          "pointer", "a pointer to a number of the resolved scene",
+          "\"" + a.pointer + "\"" +
+              (a.pointer.empty() || target == nullptr ? " (no such value)"
+                                                      : " (" + io::describe(*target) + ")"));
     }
   } else if (kind == "duty_cycle") {
     a.kind = AxisKind::kDutyCycle;
@@ -466,9 +461,7 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     throw r.error("kind", "\"map\" (a robustness-map study)",
                   doc.contains("kind") ? io::describe(doc.at("kind")) : "nothing");
   }
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos)
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  st.name = r.path_name_or("name", "");  // the default output directory results/<name>
   r.string_or("description", "");
   const json scene_doc = map_study_scene_doc(r, doc, file, base_dir, &st);
   st.base_scene = io::parse_scene(scene_doc, st.scene_file);

@@ -1,6 +1,7 @@
 #include "sim/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -51,8 +52,29 @@ std::string quoted(const std::string& text, const char* rest) {
   return out;
 }
 
+// True when a failure to create a directory entry (errno `err`) is the location's fault:
+// a bad input. A full disk, a quota or an I/O error is a failure of the run instead.
+bool location_error(int err) {
+  return err == EACCES || err == EPERM || err == EROFS || err == ENOENT || err == ENOTDIR ||
+         err == ENAMETOOLONG || err == ELOOP || err == EEXIST;
+}
+
+// Why no directory can be made in the existing directory `dir` ("" when one can): made and
+// removed at once, since permissions do not tell (root passes access(2) on /proc and /sys).
+std::string probe_problem(const std::filesystem::path& dir) {
+  const std::filesystem::path probe = dir / (".pronk-probe-" + std::to_string(::getpid()));
+  if (::mkdir(probe.c_str(), 0700) == 0) {
+    ::rmdir(probe.c_str());
+    return "";
+  }
+  const int err = errno;
+  if (!location_error(err)) return "";  // e.g. a full disk: the run reports it (exit 1)
+  return quoted(dir.string(), ", a directory in which nothing can be created (") +
+         std::strerror(err) + ")";
+}
+
 // Why `path` cannot be an output directory ("" when it can): the nearest existing part of
-// it must be a writable directory.
+// it must be a directory in which pronk can create entries.
 std::string output_directory_problem(const std::string& path) {
   if (path.empty()) return "an empty path";
   std::filesystem::path p(path);
@@ -66,7 +88,7 @@ std::string output_directory_problem(const std::string& path) {
   if (::access(p.c_str(), W_OK | X_OK) != 0) {
     return quoted(p.string(), ", a directory that is not writable");
   }
-  return "";
+  return probe_problem(p);
 }
 
 }  // namespace
@@ -82,8 +104,9 @@ void make_directories(const std::string& path) {
   std::error_code ec;
   std::filesystem::create_directories(path, ec);
   if (!ec) return;
-  const std::string problem = output_directory_problem(path);
-  if (!problem.empty()) {
+  if (location_error(ec.value())) {
+    std::string problem = output_directory_problem(path);
+    if (problem.empty()) problem = quoted(path, ", which cannot be created (") + ec.message() + ")";
     throw InputError(path, "", "a directory that exists or can be created", problem);
   }
   throw std::runtime_error("cannot create directory " + path + ": " + ec.message());

@@ -43,43 +43,77 @@ std::string pointer_escape(const std::string& key) {
   return out;
 }
 
-std::size_t json_nesting_depth(std::string_view text) {
-  std::size_t depth = 0, deepest = 0;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;  // the escaped character cannot end the string
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
+namespace {
+
+// Decodes one reference token (~1 is '/', ~0 is '~'); false for any other '~' escape.
+bool unescape_token(const std::string& raw, std::string* token) {
+  token->clear();
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (raw[i] != '~') {
+      *token += raw[i];
+    } else if (i + 1 < raw.size() && (raw[i + 1] == '0' || raw[i + 1] == '1')) {
+      *token += raw[++i] == '0' ? '~' : '/';
+    } else {
+      return false;
     }
   }
-  return deepest;
+  return true;
 }
 
-json parse_json_text(const std::string& text, const std::string& file) {
-  const std::size_t depth = json_nesting_depth(text);
-  if (depth > kMaxJsonDepth) {
-    throw InputError(file, "",
-                     "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
-                     "arrays/objects nested " + std::to_string(depth) + " levels deep");
+// An array index token: "0" or a decimal without a leading zero, below `size`.
+bool array_index(const std::string& token, std::size_t size, std::size_t* index) {
+  if (token.empty() || token.size() > 18 || (token.size() > 1 && token[0] == '0')) return false;
+  if (!std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return false;
   }
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(file, "", "valid JSON", std::string("a syntax error: ") + e.what());
-  } catch (const json::exception& e) {
-    // A number beyond the double range (1e400) is out_of_range 406, not a parse_error.
-    throw InputError(file, "", "valid JSON with finite numbers", e.what());
+  *index = static_cast<std::size_t>(std::stoull(token));
+  return *index < size;
+}
+
+}  // namespace
+
+const json* find_pointer(const json& doc, const std::string& pointer) {
+  if (pointer.empty()) return &doc;
+  if (pointer[0] != '/') return nullptr;
+  const json* at = &doc;
+  std::string token;
+  std::size_t begin = 1;
+  while (true) {
+    const std::size_t end = std::min(pointer.find('/', begin), pointer.size());
+    if (!unescape_token(pointer.substr(begin, end - begin), &token)) return nullptr;
+    std::size_t index = 0;
+    if (at->is_object()) {
+      const auto it = at->find(token);
+      if (it == at->end()) return nullptr;
+      at = &*it;
+    } else if (at->is_array() && array_index(token, at->size(), &index)) {
+      at = &(*at)[index];
+    } else {
+      return nullptr;
+    }
+    if (end == pointer.size()) return at;
+    begin = end + 1;
   }
+}
+
+json* find_pointer(json& doc, const std::string& pointer) {
+  return const_cast<json*>(find_pointer(static_cast<const json&>(doc), pointer));
+}
+
+std::string path_name_problem(const std::string& name) {
+  if (name.empty()) return "an empty name";
+  if (name == "." || name == "..") return "\"" + name + "\", which names a directory itself";
+  if (name.size() > kMaxPathNameBytes) {
+    return "a name of " + std::to_string(name.size()) + " bytes";
+  }
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if (c == '/') return "\"" + name + "\", which has a '/'";
+    if (c < 0x20 || c == 0x7f) {
+      return "a control character (byte " + std::to_string(c) + ") at byte " + std::to_string(i);
+    }
+  }
+  return "";
 }
 
 namespace {
@@ -220,6 +254,19 @@ std::string JsonReader::string_or(const std::string& key, const std::string& fal
   const json& v = get(key);
   if (!v.is_string()) throw error(key, "a string", describe(v));
   return v.get<std::string>();
+}
+
+std::string JsonReader::path_name_or(const std::string& key, const std::string& fallback) {
+  const std::string name = string_or(key, fallback);
+  const std::string problem = path_name_problem(name);
+  if (!problem.empty()) {
+    throw error(key,
+                "a name usable as a directory name (not empty, \".\" or \"..\"; no '/', no "
+                "control characters; at most " +
+                    std::to_string(kMaxPathNameBytes) + " bytes)",
+                problem);
+  }
+  return name;
 }
 
 std::string JsonReader::choice_or(const std::string& key, const std::string& fallback,

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/io/input_error.hpp"
+#include "sim/io/json_text.hpp"
 
 namespace pronk::io {
 
@@ -27,20 +28,24 @@ using json = nlohmann::json;
 inline constexpr double kMaxInputMagnitude = 1e12;
 /// Physical bounds of the loaders: masses [kg], gravity components [m/s^2].
 inline constexpr double kMinMass = 1e-6, kMaxMass = 1e6, kMaxGravity = 1e3;
-/// Deepest nesting of arrays and objects a JSON input may have.
-inline constexpr std::size_t kMaxJsonDepth = 128;
-
-/// Nesting depth of JSON text ('[' and '{' outside strings), found without parsing.
-std::size_t json_nesting_depth(std::string_view text);
-/// Parses JSON text read from `file` (named in errors). InputError for nesting deeper
-/// than kMaxJsonDepth (checked before parsing: deep nesting would overflow the stack),
-/// a syntax error, or a number beyond the double range.
-json parse_json_text(const std::string& text, const std::string& file);
-
 /// Short description of a JSON value for error messages ("string \"abc\"").
 std::string describe(const json& value);
 /// Escapes a key for use in a JSON Pointer (RFC 6901).
 std::string pointer_escape(const std::string& key);
+/// The value at JSON Pointer `pointer` (RFC 6901) in `doc` (`doc` itself for ""), or nullptr
+/// when there is none: a pointer that does not start with '/', an escape other than ~0 and
+/// ~1, a missing key, a token below a number or string, an array index that is not a plain
+/// decimal (no sign, no leading zero, not "-") below the array's size. Never throws: a
+/// pointer from the user must not reach nlohmann's own exceptions.
+const json* find_pointer(const json& doc, const std::string& pointer);
+json* find_pointer(json& doc, const std::string& pointer);
+
+/// Longest name pronk uses as a file or directory name (NAME_MAX of Linux file systems).
+inline constexpr std::size_t kMaxPathNameBytes = 255;
+/// Why `name` cannot be one component of an output path ("" when it can): it must be
+/// non-empty, at most kMaxPathNameBytes bytes, not "." or "..", and hold no '/' and no
+/// control character (bytes below 0x20, and 0x7f).
+std::string path_name_problem(const std::string& name);
 
 class JsonReader {
  public:
@@ -68,6 +73,9 @@ class JsonReader {
   long integer_or(const std::string& key, long fallback, long lo, long hi);
   bool boolean_or(const std::string& key, bool fallback);
   std::string string_or(const std::string& key, const std::string& fallback);
+  /// A string used as a file or directory name (a scene's or study's "name": the default
+  /// output directory): see path_name_problem.
+  std::string path_name_or(const std::string& key, const std::string& fallback);
   /// A string that must be one of `choices`.
   std::string choice_or(const std::string& key, const std::string& fallback,
                         std::initializer_list<const char*> choices);

@@ -54,10 +54,7 @@ class Loader {
     const std::string kind = r.choice_or("kind", "", {"mechanism"});
     if (kind.empty()) throw r.error("kind", "\"mechanism\"", "nothing");
     pr::Mechanism& m = out.mechanism;
-    m.name = r.string_or("name", "mechanism");
-    if (m.name.empty() || m.name.find('/') != std::string::npos) {
-      throw r.error("name", "a non-empty name without '/'", describe(doc_["name"]));
-    }
+    m.name = r.path_name_or("name", "mechanism");  // the default output directory out/<name>
     m.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
     if (r.has("gravity")) {
       m.gravity = r.vector("gravity", 3, -kMaxGravity, kMaxGravity);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -90,66 +91,43 @@ json read_json_file(const std::string& path) {
 }
 
 void apply_override(json& doc, const std::string& assignment) {
-  const std::string where = "--set " + assignment;
+  const std::string where = "command line (--set " + assignment + ")";
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || assignment.empty() || assignment[0] != '/') {
     throw InputError("command line", "", "--set /json/pointer=value", "\"" + assignment + "\"");
   }
   const std::string ptr = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
-  json value;
-  if (json_nesting_depth(text) > kMaxJsonDepth) {
-    throw InputError("command line (" + where + ")", ptr,
-                     "a value nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
-                     std::to_string(json_nesting_depth(text)) + " levels");
-  }
-  try {
-    value = json::parse(text);
-  } catch (const json::parse_error&) {
-    value = text;  // a bare word: a string
-  } catch (const json::exception&) {
-    // Valid JSON syntax that nlohmann cannot hold, e.g. the number 1e400.
-    throw InputError("command line (" + where + ")", ptr, "a finite number",
-                     "\"" + text + "\" (number overflow)");
-  }
+  const std::optional<json> parsed = parse_json_value(text, where, ptr);
+  const json value = parsed ? *parsed : json(text);  // a bare word: a string
   json::json_pointer jp;
   try {
     jp = json::json_pointer(ptr);
   } catch (const json::exception& e) {
-    throw InputError("command line (" + where + ")", ptr, "a valid JSON Pointer", e.what());
+    throw InputError(where, ptr, "a valid JSON Pointer", e.what());
   }
-  if (jp.empty())
-    throw InputError("command line (" + where + ")", ptr, "a pointer below the root", "the root");
-  const json::json_pointer parent = jp.parent_pointer();
-  bool parent_exists = false;
-  try {
-    parent_exists = doc.contains(parent);
-  } catch (const json::exception&) {
-    parent_exists = false;  // e.g. an array index too large for size_t
+  const std::string parent_ptr = jp.parent_pointer().to_string();
+  json* parent = find_pointer(doc, parent_ptr);
+  if (parent == nullptr) {
+    throw InputError(where, ptr, "a pointer whose parent exists in the scene",
+                     "no value at " + (parent_ptr.empty() ? "/" : parent_ptr));
   }
-  if (!parent_exists) {
-    throw InputError("command line (" + where + ")", ptr,
-                     "a pointer whose parent exists in the scene",
-                     "no value at " + (parent.to_string().empty() ? "/" : parent.to_string()));
-  }
-  json& p = doc[parent];
   const std::string last = jp.back();
-  if (p.is_array()) {
+  if (parent->is_array()) {
     std::size_t idx = 0;
     const bool numeric =
         !last.empty() && std::all_of(last.begin(), last.end(),
                                      [](unsigned char ch) { return std::isdigit(ch) != 0; });
     if (numeric) idx = std::stoul(last.size() > 9 ? std::string("999999999") : last);
-    if (!numeric || idx >= p.size()) {
-      throw InputError("command line (" + where + ")", ptr,
-                       "an index below " + std::to_string(p.size()), "\"" + last + "\"");
+    if (!numeric || idx >= parent->size()) {
+      throw InputError(where, ptr, "an index below " + std::to_string(parent->size()),
+                       "\"" + last + "\"");
     }
-    p[idx] = value;
-  } else if (p.is_object()) {
-    p[last] = value;
+    (*parent)[idx] = value;
+  } else if (parent->is_object()) {
+    (*parent)[last] = value;
   } else {
-    throw InputError("command line (" + where + ")", ptr, "an object or array at the parent",
-                     describe(p));
+    throw InputError(where, ptr, "an object or array at the parent", describe(*parent));
   }
 }
 
@@ -364,10 +342,7 @@ void check_scene_consistency(const scene::Scene& s, const std::string& file) {
 
 // The top-level scalars: name, model, gravity, attitude formulation.
 void parse_scene_header(JsonReader& r, scene::Scene* s) {
-  s->name = r.string_or("name", "scene");
-  if (s->name.empty() || s->name.find('/') != std::string::npos) {
-    throw r.error("name", "a non-empty name without '/'", "\"" + s->name + "\"");
-  }
+  s->name = r.path_name_or("name", "scene");  // the default output directory out/<name>
   const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid"});
   s->model = model == "pulse"          ? scene::ModelKind::kPulse
              : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid

@@ -455,11 +455,13 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     check_error(parse_error(doc), "/simulation/solver/h_min", "valid solver options",
                 "must be < h_max");
   }
-  SECTION("empty name and a name with '/'") {
+  SECTION("a name that is not a plain directory name") {
     doc["name"] = "";
-    check_error(parse_error(doc), "/name", "a non-empty name without '/'", "\"\"");
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "an empty name");
     doc["name"] = "a/b";
-    check_error(parse_error(doc), "/name", "a non-empty name without '/'", "\"a/b\"");
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "\"a/b\"");
+    doc["name"] = "..";
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "\"..\"");
   }
 }
 
