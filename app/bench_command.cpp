@@ -19,10 +19,10 @@
 #include "app/bench_auto.hpp"
 #include "app/bench_headline.hpp"
 #include "app/bench_suite.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/plot.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/plot.hpp"
 
 #ifndef PRONK_STUDIES_DIR
 #define PRONK_STUDIES_DIR "studies"

@@ -8,8 +8,8 @@
 
 #include "optimize/map/map_engine.hpp"
 #include "optimize/map/map_study.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/reduced/simulator.hpp"

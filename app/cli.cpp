@@ -10,9 +10,9 @@
 #include "app/optimize_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
 
 namespace pronk::app {
 

@@ -20,10 +20,10 @@
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::app {
 

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "sim/io/json_reader.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/mechanism_output.hpp"
-#include "sim/io/page/page_data.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/write/mechanism_output.hpp"
+#include "io/page/page_data.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/simulate.hpp"

@@ -1,7 +1,7 @@
 // libFuzzer target over the mechanism loader: the input is a mechanism document.
 // A document that loads must load again from its resolved form.
 #include "fuzz/fuzz_support.hpp"
-#include "sim/io/mechanism_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto doc = pronk::fuzz::document(pronk::fuzz::text(data, size));

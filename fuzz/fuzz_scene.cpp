@@ -2,7 +2,7 @@
 // first line is a --set assignment, the rest a scene document. Any outcome but
 // a crash, a sanitizer report or an exception other than InputError is fine.
 #include "fuzz/fuzz_support.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string input(reinterpret_cast<const char*>(data), size);

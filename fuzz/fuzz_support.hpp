@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::fuzz {
 

@@ -6,9 +6,9 @@
 
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
 

@@ -5,11 +5,11 @@
 #include <set>
 #include <sstream>
 
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::optimize {
 

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "sim/io/json_reader.hpp"
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::optimize {
 

@@ -11,7 +11,7 @@
 
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
 

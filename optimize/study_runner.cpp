@@ -11,13 +11,13 @@
 #include <sstream>
 
 #include "optimize/journal.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/plot.hpp"
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/plot.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {

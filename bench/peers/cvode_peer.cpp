@@ -33,8 +33,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/ode/sundials_jacobian.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "tests/pseudorigid/scenes.hpp"

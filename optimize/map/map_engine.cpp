@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/simulate.hpp"

@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "optimize/study.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 
 namespace pronk::optimize::map {

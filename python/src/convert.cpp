@@ -2,8 +2,8 @@
 #include <thread>
 
 #include "python/src/bindings.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::python {
 

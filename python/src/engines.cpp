@@ -6,7 +6,7 @@
 #include "optimize/map/map_study.hpp"
 #include "optimize/reproduce.hpp"
 #include "python/src/bindings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::python {
 

@@ -1,6 +1,6 @@
 // The extension module pronk._pronk; the package pronk (python/pronk/) re-exports it.
 #include "python/src/bindings.hpp"
-#include "sim/io/build_info.hpp"
+#include "io/build_info.hpp"
 
 PYBIND11_MODULE(_pronk, m) {
   m.doc() = "pronk: simulate and tune robots that run by ballistic hops";

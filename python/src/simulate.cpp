@@ -5,11 +5,11 @@
 #include "sim/simulate.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/scene_object.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/robot_output.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/write/robot_output.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/reduced/metrics.hpp"
 
 namespace pronk::python {

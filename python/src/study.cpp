@@ -12,8 +12,8 @@
 #include "optimize/study_runner.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/scene_object.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::python {
 

@@ -8,9 +8,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/mechanism_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/write/mechanism_output.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/simulator.hpp"

@@ -8,8 +8,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"

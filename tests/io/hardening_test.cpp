@@ -9,10 +9,10 @@
 #include <string>
 
 #include "optimize/journal.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 using Catch::Matchers::Contains;
 using nlohmann::json;

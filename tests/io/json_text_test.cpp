@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/json_text.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/json_text.hpp"
+#include "io/load/scene_loader.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;

@@ -1,7 +1,7 @@
-// Tests of sim/io/scene_loader.hpp: the shipped scenes load, the resolved scene
+// Tests of io/load/scene_loader.hpp: the shipped scenes load, the resolved scene
 // round-trips exactly, every class of bad input is an io::InputError naming the
 // JSON Pointer, what was expected and what was found, and --set overrides.
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 #include <unistd.h>
 

@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/ode/solver.hpp"
 #include "sim/pseudorigid/simulator.hpp"

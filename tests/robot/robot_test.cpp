@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/model.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "optimize/scenario.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/reduced/stride_map.hpp"

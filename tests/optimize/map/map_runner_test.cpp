@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "optimize/map/map_output.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 namespace m = pronk::optimize::map;

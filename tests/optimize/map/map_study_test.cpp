@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "optimize/map/map_engine.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 using nlohmann::json;
