@@ -133,7 +133,17 @@ TEST_CASE("the legged robot's default lateral loop has the placed poles in the p
     for (cplx z : scene::pd_channel_poles(1.0, 1.5, t)) want.push_back(z);
   }
   want.push_back(vertical_multiplier(s, t.stance));
-  check_multipliers(reduced::analyze_stability(s), want, 1e-6);
+  // The x, pitch and yaw channels share one pair: a triple root, which the finite-difference
+  // Jacobian splits by ~2e-5. The placed lateral poles are simple: each within 1e-5.
+  const reduced::StabilityResult r = reduced::analyze_stability(s);
+  check_multipliers(r, want, 1e-4);
+  for (double pole : scene::kLateralPoles) {
+    double nearest = 1.0;
+    for (int i = 0; i < reduced::kStrideStateSize; ++i)
+      nearest = std::min(nearest, std::abs(r.multipliers[i] - cplx(pole)));
+    INFO("placed pole " << pole);
+    CHECK(nearest < 1e-5);
+  }
   // In max-force mode the stance is the time 3 legs of 60 N take: Ts = 2 m v / (3 F - m g).
   doc.erase("pulse");
   const scene::Scene f = io::parse_scene(doc, "three_legs.json");
