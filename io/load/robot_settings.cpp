@@ -27,9 +27,59 @@ bool stiffness_or_auto(JsonReader& r, const json& node, const std::string& key, 
   return false;
 }
 
+// The leg spring: a stiffness [N/m], or {"stance_time": Ts} (the stiffness whose stance
+// half-period is Ts, resolved with the body once the scene is read).
+void parse_leg_stiffness(JsonReader& r, const json& node, scene::PseudoRigid* p,
+                         GivenSettings* given) {
+  const auto it = node.find("leg_stiffness");
+  if (it != node.end() && it->is_object()) {
+    JsonReader l = r.object("leg_stiffness");
+    if (!l.has("stance_time"))
+      throw l.error("stance_time", "the stance half-period the legs are sized for [s]", "nothing");
+    given->leg_stance_time = l.number("stance_time", 1e-6, 1e3);
+    l.finish();
+    return;
+  }
+  given->leg_stiffness = it != node.end();
+  if (it != node.end() && !it->is_number()) {
+    r.optional("leg_stiffness");
+    throw r.error("leg_stiffness", "a stiffness [N/m] or {\"stance_time\": seconds}",
+                  describe(*it));
+  }
+  p->leg_stiffness = r.number_or("leg_stiffness", p->leg_stiffness, 1e-3, 1e9);
+}
+
+// Stance attitude feedback: absolute kp, kd [N m/rad, N m s/rad] (a missing one is 0), or
+// "gains" per unit inertia; max_moment [N m] (0 = none). Left out, the robot-scaled defaults.
+void parse_stance_attitude(JsonReader& r, scene::PseudoRigid* p, GivenSettings* given) {
+  if (!r.has("stance_attitude")) {
+    r.optional("stance_attitude");
+    return;
+  }
+  given->stance_attitude = true;
+  JsonReader a = r.object("stance_attitude");
+  if (a.has("gains") && (a.has("kp") || a.has("kd"))) {
+    throw a.error("gains", "either absolute \"kp\" and \"kd\" or relative \"gains\", not both",
+                  std::string("\"gains\" beside \"") + (a.has("kp") ? "kp" : "kd") + "\"");
+  }
+  if (a.has("gains")) given->stance = parse_relative_stance_gains(a.object("gains"));
+  const Eigen::VectorXd kp = a.has("kp") ? a.vector("kp", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
+  const Eigen::VectorXd kd = a.has("kd") ? a.vector("kd", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
+  if (!a.has("kp")) a.optional("kp");
+  if (!a.has("kd")) a.optional("kd");
+  if (!a.has("gains")) a.optional("gains");
+  p->stance_max_moment = a.number_or("max_moment", 0.0, 0.0, 1e6);
+  for (int k = 0; k < 2; ++k) {
+    p->stance_kp[k] = kp[k];
+    p->stance_kd[k] = kd[k];
+  }
+  a.finish();
+}
+
 }  // namespace
 
-void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out) {
+void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
+                        GivenSettings* given) {
   scene::PseudoRigid& p = *out;
   const std::string hips = r.choice_or("hips", "ghost_points", {"ghost_points", "dummy_masses"});
   p.hips =
@@ -49,11 +99,13 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.internal_auto = stiffness_or_auto(r, node, "internal_stiffness", &p.internal_stiffness);
   p.contact_auto = stiffness_or_auto(r, node, "contact_stiffness", &p.contact_stiffness);
   p.internal_damping = r.number_or("internal_damping", p.internal_damping, 0.0, 1e9);
+  given->contact_damping = r.has("contact_damping");
   p.contact_damping = r.number_or("contact_damping", p.contact_damping, 0.0, 1e9);
   p.strain_budget = r.number_or("strain_budget", p.strain_budget, 1e-12, 0.5);
   p.penetration_budget = r.number_or("penetration_budget", p.penetration_budget, 1e-12, 1.0);
+  given->foot_mass = r.has("foot_mass");
   p.foot_mass = r.number_or("foot_mass", p.foot_mass, 1e-6, 1e3);
-  p.leg_stiffness = r.number_or("leg_stiffness", p.leg_stiffness, 1e-3, 1e9);
+  parse_leg_stiffness(r, node, &p, given);
   p.leg_damping = r.number_or("leg_damping", p.leg_damping, 0.0, 1e9);
   p.actuator_max_force = r.number_or("actuator_max_force", p.actuator_max_force, 0.0, 1e9);
   p.impulse_feedback = r.boolean_or("impulse_feedback", p.impulse_feedback);
@@ -65,21 +117,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out)
   p.hip_rotation = r.boolean_or("hip_rotation", p.hip_rotation);
   p.max_leg_angle =
       r.number_or("max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI, 0.0, 80.0) * M_PI / 180.0;
-  if (r.has("stance_attitude")) {
-    JsonReader a = r.object("stance_attitude");
-    const Eigen::VectorXd kp = a.has("kp") ? a.vector("kp", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
-    const Eigen::VectorXd kd = a.has("kd") ? a.vector("kd", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
-    if (!a.has("kp")) a.optional("kp");
-    if (!a.has("kd")) a.optional("kd");
-    p.stance_max_moment = a.number_or("max_moment", p.stance_max_moment, 0.0, 1e6);
-    for (int k = 0; k < 2; ++k) {
-      p.stance_kp[k] = kp[k];
-      p.stance_kd[k] = kd[k];
-    }
-    a.finish();
-  } else {
-    r.optional("stance_attitude");
-  }
+  parse_stance_attitude(r, &p, given);
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);

@@ -9,12 +9,15 @@
 #include <nlohmann/json.hpp>
 
 #include "io/load/json_reader.hpp"
+#include "io/load/scaled_settings.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::io {
 
-/// Reads the "pseudo_rigid" object `r` (raw node `node`) into *out.
-void parse_pseudo_rigid(JsonReader r, const nlohmann::json& node, scene::PseudoRigid* out);
+/// Reads the "pseudo_rigid" object `r` (raw node `node`) into *out, and records in *given
+/// which robot-scaled settings it gave (resolve_scaled_settings applies the rest).
+void parse_pseudo_rigid(JsonReader r, const nlohmann::json& node, scene::PseudoRigid* out,
+                        GivenSettings* given);
 
 /// The resolved "pseudo_rigid" object; parse_pseudo_rigid reproduces it.
 nlohmann::json pseudo_rigid_to_json(const scene::PseudoRigid& p);

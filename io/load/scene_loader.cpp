@@ -12,6 +12,7 @@
 
 #include "io/load/json_reader.hpp"
 #include "io/load/robot_settings.hpp"
+#include "io/load/scaled_settings.hpp"
 
 namespace pronk::io {
 
@@ -157,7 +158,8 @@ void parse_scene_legs(JsonReader l, const std::string& file, scene::Legs* legs) 
 }
 
 // The controller's optional sub-objects: setpoint, bank, allocation.
-void parse_scene_setpoint_bank_allocation(JsonReader& c, scene::Controller* k) {
+void parse_scene_setpoint_bank_allocation(JsonReader& c, scene::Controller* k,
+                                          GivenSettings* given) {
   if (c.has("setpoint")) {
     JsonReader sp = c.object("setpoint");
     k->setpoint_position = sp.vec3_or("position", k->setpoint_position);
@@ -169,6 +171,9 @@ void parse_scene_setpoint_bank_allocation(JsonReader& c, scene::Controller* k) {
   }
   if (c.has("bank")) {
     JsonReader b = c.object("bank");
+    given->bank = true;
+    given->bank_kp = b.has("kp");
+    given->bank_kd = b.has("kd");
     k->bank_enabled = b.boolean_or("enabled", true);
     k->bank_kp = b.number_or("kp", 0.0, 0.0, 1e6);
     k->bank_kd = b.number_or("kd", 0.0, 0.0, 1e6);
@@ -222,14 +227,26 @@ void parse_scene_schedule_gait(JsonReader& c, const scene::Legs& legs, scene::Co
   }
 }
 
-void parse_scene_controller(JsonReader c, const scene::Legs& legs, scene::Controller* k) {
+void parse_scene_controller(JsonReader c, const scene::Legs& legs, scene::Controller* k,
+                            GivenSettings* given) {
   k->hop_height = c.positive_or("hop_height", k->hop_height);
   k->pulse_aware_hop = c.boolean_or("pulse_aware_hop", false);
-  if (c.has("kp")) k->kp = c.vector("kp", 6, 0.0, 1e9);
-  if (c.has("kd")) k->kd = c.vector("kd", 6, 0.0, 1e9);
+  if (c.has("gains") && (c.has("kp") || c.has("kd"))) {
+    throw c.error("gains", "either absolute \"kp\" and \"kd\" or relative \"gains\", not both",
+                  std::string("\"gains\" beside \"") + (c.has("kp") ? "kp" : "kd") + "\"");
+  }
+  given->kp = c.has("kp");
+  given->kd = c.has("kd");
+  if (given->kp) k->kp = c.vector("kp", 6, 0.0, 1e9);
+  if (given->kd) k->kd = c.vector("kd", 6, 0.0, 1e9);
   c.optional("kp");
   c.optional("kd");
-  parse_scene_setpoint_bank_allocation(c, k);
+  if (c.has("gains")) {
+    given->gains = parse_relative_gains(c.object("gains"));
+  } else {
+    c.optional("gains");
+  }
+  parse_scene_setpoint_bank_allocation(c, k, given);
   parse_scene_schedule_gait(c, legs, k);
   c.finish();
 }
@@ -369,8 +386,9 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
   else
     r.optional("legs");
   scene::seed_gains(s.body, &s.controller.kp, &s.controller.kd);
+  GivenSettings given;  // what the scene says of the settings that scale with the robot
   if (r.has("controller"))
-    parse_scene_controller(r.object("controller"), s.legs, &s.controller);
+    parse_scene_controller(r.object("controller"), s.legs, &s.controller, &given);
   else
     r.optional("controller");
   if (r.has("pulse"))
@@ -378,7 +396,7 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
   else
     r.optional("pulse");
   if (r.has("pseudo_rigid"))
-    parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid);
+    parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid, &given);
   else
     r.optional("pseudo_rigid");
   if (r.has("initial"))
@@ -394,6 +412,7 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     parse_scene_simulation(r.object("simulation"), &s.simulation);
   else
     r.optional("simulation");
+  resolve_scaled_settings(given, file, &s);
   check_scene_consistency(s, file);
   r.finish();
   return s;

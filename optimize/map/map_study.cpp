@@ -9,6 +9,7 @@
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
+#include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::optimize::map {
 
@@ -251,9 +252,7 @@ DutySetting duty_setting(const scene::Scene& s) {
 }
 
 double leg_stiffness_for_duty(const scene::Scene& s, double duty) {
-  const double T = pulse_duration_for_duty(s, duty);
-  const double n = static_cast<double>(std::max<size_t>(s.legs.hips.size(), 1));
-  return s.body.mass * M_PI * M_PI / (n * T * T);
+  return scene::leg_stiffness_for_stance(s, pulse_duration_for_duty(s, duty));
 }
 
 void apply_duty(scene::Scene& s, double duty) {

@@ -323,8 +323,10 @@ TEST_CASE("stance attitude feedback settings parse and round-trip", "[io][scene]
   CHECK(r["max_moment"] == 1.5);
   doc["pseudo_rigid"]["stance_attitude"] = {{"kd", {-1, 1}}};
   CHECK_THROWS_AS(io::parse_scene(doc, "pr.json"), InputError);
-  doc["pseudo_rigid"].erase("stance_attitude");
+  doc["pseudo_rigid"]["stance_attitude"] = json::object();  // given, but no gains: off
   CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
+  doc["pseudo_rigid"].erase("stance_attitude");  // left out: the robot-scaled default, on
+  CHECK(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
 }
 
 TEST_CASE("level feet setting parses, round-trips and names its pointer", "[io][scene]") {
@@ -335,7 +337,7 @@ TEST_CASE("level feet setting parses, round-trips and names its pointer", "[io][
   CHECK_FALSE(s.pseudo_rigid.level_feet);
   CHECK(io::scene_to_json(s)["pseudo_rigid"]["level_feet"] == false);
   doc["pseudo_rigid"].erase("level_feet");
-  CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // default off
+  CHECK(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // default on (running)
   doc["pseudo_rigid"]["level_feet"] = 1;
   check_error(parse_error(doc), "/pseudo_rigid/level_feet", "true or false", "number 1");
 }
