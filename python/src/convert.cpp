@@ -1,9 +1,9 @@
 #include <cmath>
 #include <thread>
 
-#include "python/src/bindings.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
+#include "python/src/bindings.hpp"
 
 namespace pronk::python {
 
