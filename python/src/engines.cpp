@@ -6,6 +6,7 @@
 #include "optimize/map/map_study.hpp"
 #include "optimize/reproduce.hpp"
 #include "python/src/bindings.hpp"
+#include "python/src/gil_probe.hpp"
 #include "sim/io/scene_loader.hpp"
 
 namespace pronk::python {
@@ -55,7 +56,7 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
     opt.out_dir = py::module_::import("os").attr("fspath")(out).cast<std::string>();
   mp::MapOutcome o;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     o = mp::run_map(st, opt);
   }
   py::list boundaries;
@@ -72,7 +73,7 @@ py::dict reproduce(const py::handle& design, const py::handle& threads, double r
   const int n = threads_arg(threads);
   optimize::ReproduceReport rep;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     rep = optimize::reproduce_design(doc, file, n, rtol);
   }
   py::list values;

@@ -1,5 +1,6 @@
 // The extension module pronk._pronk; the package pronk (python/pronk/) re-exports it.
 #include "python/src/bindings.hpp"
+#include "python/src/gil_probe.hpp"
 #include "sim/io/build_info.hpp"
 
 PYBIND11_MODULE(_pronk, m) {
@@ -10,4 +11,5 @@ PYBIND11_MODULE(_pronk, m) {
   pronk::python::bind_simulate(m);
   pronk::python::bind_study(m);
   pronk::python::bind_engines(m);
+  pronk::python::bind_gil_probe(m);
 }

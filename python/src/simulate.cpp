@@ -4,6 +4,7 @@
 // full model) as dicts and NumPy arrays, from the same functions.
 #include "sim/simulate.hpp"
 #include "python/src/bindings.hpp"
+#include "python/src/gil_probe.hpp"
 #include "python/src/scene_object.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/mechanism_loader.hpp"
@@ -69,7 +70,7 @@ PyResult simulate_scene(const py::handle& scene_obj, const py::handle& model,
   RunResult r;
   nlohmann::json summary;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     try {
       r = simulate(scene);
     } catch (const std::invalid_argument& e) {
