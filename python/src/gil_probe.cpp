@@ -58,7 +58,7 @@ void signal() {
 
 void gil_probe_point() {
   Probe& p = probe();
-  if (!p.armed.exchange(false)) return;
+  if (!p.armed.load() || !p.armed.exchange(false)) return;  // unarmed: one load
   std::unique_lock<std::mutex> lock(p.mutex);
   p.reached = true;
   p.changed.notify_all();
