@@ -58,10 +58,7 @@ void parse_stance_attitude(JsonReader& r, scene::PseudoRigid* p, GivenSettings* 
   }
   given->stance_attitude = true;
   JsonReader a = r.object("stance_attitude");
-  if (a.has("gains") && (a.has("kp") || a.has("kd"))) {
-    throw a.error("gains", "either absolute \"kp\" and \"kd\" or relative \"gains\", not both",
-                  std::string("\"gains\" beside \"") + (a.has("kp") ? "kp" : "kd") + "\"");
-  }
+  refuse_both_gain_forms(a);
   if (a.has("gains")) given->stance = parse_relative_stance_gains(a.object("gains"));
   const Eigen::VectorXd kp = a.has("kp") ? a.vector("kp", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);
   const Eigen::VectorXd kd = a.has("kd") ? a.vector("kd", 2, 0.0, 1e6) : Eigen::VectorXd::Zero(2);

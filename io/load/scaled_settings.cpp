@@ -86,6 +86,13 @@ void resolve_full_model(const GivenSettings& given, scene::Scene* s) {
 
 }  // namespace
 
+void refuse_both_gain_forms(const JsonReader& r) {
+  if (r.has("gains") && (r.has("kp") || r.has("kd"))) {
+    throw r.error("gains", "either absolute \"kp\" and \"kd\" or relative \"gains\", not both",
+                  std::string("\"gains\" beside \"") + (r.has("kp") ? "kp" : "kd") + "\"");
+  }
+}
+
 scene::RelativeGains parse_relative_gains(JsonReader g) {
   scene::RelativeGains out;
   const bool per_unit = g.has("kp") || g.has("kd");

@@ -33,6 +33,10 @@ struct GivenSettings {
   bool foot_mass = false;                     ///< "pseudo_rigid": "foot_mass"
 };
 
+/// Refuses an object (the controller, the stance attitude feedback) that gives both absolute
+/// "kp"/"kd" and relative "gains".
+void refuse_both_gain_forms(const JsonReader& r);
+
 /// Reads "controller": {"gains": {...}}: either "kp" and "kd" (6 each, per unit mass and
 /// inertia) or "natural_frequency" and "damping_ratio" (5 each: x, y, roll, pitch, yaw).
 scene::RelativeGains parse_relative_gains(JsonReader g);

@@ -231,10 +231,7 @@ void parse_scene_controller(JsonReader c, const scene::Legs& legs, scene::Contro
                             GivenSettings* given) {
   k->hop_height = c.positive_or("hop_height", k->hop_height);
   k->pulse_aware_hop = c.boolean_or("pulse_aware_hop", false);
-  if (c.has("gains") && (c.has("kp") || c.has("kd"))) {
-    throw c.error("gains", "either absolute \"kp\" and \"kd\" or relative \"gains\", not both",
-                  std::string("\"gains\" beside \"") + (c.has("kp") ? "kp" : "kd") + "\"");
-  }
+  refuse_both_gain_forms(c);
   given->kp = c.has("kp");
   given->kd = c.has("kd");
   if (given->kp) k->kp = c.vector("kp", 6, 0.0, 1e9);
