@@ -77,8 +77,7 @@ TEST_CASE("a full disk is exit 1 with the reason, and every file left is whole o
       return;
     }
   }
-  const std::string scene =
-      std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/four_leg_drop.json";
+  const std::string scene = std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/pendulum.json";
   const Run ref = pronk(d, {"simulate", scene, "--out", "ref", "-q"});
   REQUIRE(ref.code == 0);
   const std::map<std::string, std::string> reference = files_under(d / "ref");
