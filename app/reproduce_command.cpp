@@ -47,13 +47,19 @@ void print_decisions(const optimize::ReproduceReport& rep) {
     std::printf("(a) decisions of %ld trials: identical\n", rep.trials_compared);
     return;
   }
-  std::printf("(a) decisions of %ld trials: %zu differ\n", rep.trials_compared,
-              rep.decision_differences.size());
+  const long fragile = static_cast<long>(rep.decision_differences.size()) - rep.decision_mismatches;
+  std::printf("(a) decisions of %ld trials: %ld differ%s\n", rep.trials_compared,
+              rep.decision_mismatches,
+              fragile > 0 ? (", and " + std::to_string(fragile) +
+                             " fragile trials (not required: the recording's perturbation run "
+                             "changed them too)")
+                                .c_str()
+                          : "");
   for (const auto& d : rep.decision_differences) {
-    std::printf("  %s %ld (%s): recorded %s; reproduced %s%s\n", d.set.c_str(), d.index,
+    std::printf("  %s %s %ld (%s): recorded %s; reproduced %s\n",
+                d.fragile ? "fragile " : "DIFFERS ", d.set.c_str(), d.index,
                 d.recorded.name.c_str(), d.recorded.describe().c_str(),
-                d.reproduced.describe().c_str(),
-                d.fragile ? " (fragile: it changed in the recording's perturbation run too)" : "");
+                d.reproduced.describe().c_str());
   }
 }
 
@@ -120,15 +126,17 @@ int run_reproduce(const ReproduceArgs& args) {
   }
   print_decisions(rep);
   print_values(rep);
-  const long differ = static_cast<long>(rep.decision_differences.size());
+  const long fragile = static_cast<long>(rep.decision_differences.size()) - rep.decision_mismatches;
+  std::string decisions = "decisions not recorded";
+  if (rep.decisions_recorded) {
+    decisions = std::to_string(rep.decision_mismatches) + " of " +
+                std::to_string(rep.trials_compared) + " trial decisions differ";
+    if (fragile > 0) decisions += " (and " + std::to_string(fragile) + " fragile ones)";
+  }
   std::printf("%s: %ld of %zu values differ%s (%ld bit-identical); %s\n",
               rep.reproduced() ? "reproduced" : "NOT REPRODUCED", rep.mismatches, rep.values.size(),
               rep.mode == CompareMode::kBitIdentical ? "" : " beyond tolerance", rep.bit_identical,
-              rep.decisions_recorded
-                  ? (std::to_string(differ) + " of " + std::to_string(rep.trials_compared) +
-                     " trial decisions differ")
-                        .c_str()
-                  : "decisions not recorded");
+              decisions.c_str());
   return rep.reproduced() ? 0 : 1;
 }
 

@@ -287,8 +287,9 @@ void check_parameters_and_scene(io::JsonReader& r, const json& design, const Rec
   r.optional("scene");
   const json expected = io::scene_to_json(
       io::parse_scene(bind_parameters(cfg.scene_doc, cfg.parameters, d.unit), cfg.scene_file));
+  // Settings the scene format gained after the design was written are not in it.
   const std::string at =
-      first_json_difference(expected, design.at("scene"), kDerivedRtol, "/scene");
+      first_json_difference(expected, design.at("scene"), kDerivedRtol, "/scene", true);
   if (!at.empty()) {
     const json::json_pointer ptr(at.substr(6).empty() ? "" : at.substr(6));
     auto text = [&](const json& j) {
@@ -315,7 +316,10 @@ void check_run_records(io::JsonReader& r, const Study& st) {
     o.integer_or(k, 0, 0, 9007199254740991L);
   }
   o.finish();
-  require(r, "stability");
+  if (!r.has("stability")) {  // designs from before pronk recorded it
+    r.optional("stability");
+    return;
+  }
   io::JsonReader s = r.object("stability");
   required_string(s, "method");
   required_bool(s, "ok");
@@ -357,8 +361,8 @@ void read_identity(io::JsonReader& r, RecordedDesign* d) {
   require(r, "threads");
   r.integer_or("threads", 1, 1, 1L << 20);
   r.number("wall_time_s", 0.0);
-  const std::string model = required_string(r, "model");
   const std::string scene_model = st.evaluator.scene_doc.value("model", std::string());
+  const std::string model = r.string_or("model", scene_model);  // older designs lack it
   if (model != scene_model) {
     throw r.error("model", "\"" + scene_model + "\" (the model of the study's scene)",
                   "\"" + model + "\"");
@@ -463,7 +467,7 @@ RecordedDesign read_design(const json& design, const std::string& path) {
 }
 
 std::string first_json_difference(const json& a, const json& b, double rtol,
-                                  const std::string& pointer) {
+                                  const std::string& pointer, bool b_may_omit) {
   if (a.is_number() && b.is_number()) {
     const double x = a.get<double>(), y = b.get<double>();
     return std::abs(x - y) <= rtol * std::max(std::abs(x), std::abs(y)) + 1e-300 ? "" : pointer;
@@ -472,8 +476,11 @@ std::string first_json_difference(const json& a, const json& b, double rtol,
   if (a.is_object()) {
     for (auto it = a.begin(); it != a.end(); ++it) {
       const std::string p = pointer + "/" + io::pointer_escape(it.key());
-      if (!b.contains(it.key())) return p;
-      const std::string d = first_json_difference(it.value(), b.at(it.key()), rtol, p);
+      if (!b.contains(it.key())) {
+        if (b_may_omit) continue;
+        return p;
+      }
+      const std::string d = first_json_difference(it.value(), b.at(it.key()), rtol, p, b_may_omit);
       if (!d.empty()) return d;
     }
     for (auto it = b.begin(); it != b.end(); ++it) {
@@ -485,7 +492,7 @@ std::string first_json_difference(const json& a, const json& b, double rtol,
     if (a.size() != b.size()) return pointer;
     for (size_t i = 0; i < a.size(); ++i) {
       const std::string d =
-          first_json_difference(a[i], b[i], rtol, pointer + "/" + std::to_string(i));
+          first_json_difference(a[i], b[i], rtol, pointer + "/" + std::to_string(i), b_may_omit);
       if (!d.empty()) return d;
     }
     return "";

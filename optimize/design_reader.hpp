@@ -45,8 +45,9 @@ struct RecordedDesign {
 RecordedDesign read_design(const nlohmann::json& design, const std::string& path);
 
 /// The first place where `a` and `b` differ, numbers compared to `rtol` relative (and 1e-300
-/// absolute), as a JSON Pointer below `pointer`; "" when they agree.
+/// absolute), as a JSON Pointer below `pointer`; "" when they agree. With `b_may_omit`, an
+/// object key of `a` that `b` lacks is no difference (a key of `b` that `a` lacks still is).
 std::string first_json_difference(const nlohmann::json& a, const nlohmann::json& b, double rtol,
-                                  const std::string& pointer = "");
+                                  const std::string& pointer = "", bool b_may_omit = false);
 
 }  // namespace pronk::optimize

@@ -65,6 +65,7 @@ void compare_decisions(ReproduceReport& rep, const RecordedSet& set, const Evalu
                          set.fragile.end();
     rep.decision_differences.push_back(
         {set_name, static_cast<long>(i), recorded, reproduced, fragile});
+    if (!fragile) ++rep.decision_mismatches;
   }
 }
 

@@ -96,6 +96,7 @@ py::dict reproduce(const py::handle& design, const py::handle& threads, const py
                   py::arg("mode") = mode, py::arg("rtol") = rep.rtol,
                   py::arg("mismatches") = rep.mismatches, py::arg("values") = values,
                   py::arg("decisions_recorded") = rep.decisions_recorded,
+                  py::arg("decision_mismatches") = rep.decision_mismatches,
                   py::arg("decision_differences") = decisions);
 }
 
@@ -116,8 +117,8 @@ void bind_engines(py::module_& m) {
         "bit-identical on the recording build, within the design's recorded tolerance on\n"
         "another, or within rtol when given (a finite number > 0). Returns reproduced,\n"
         "same_build, mode, rtol, mismatches, values (name, recorded, reproduced, tolerance,\n"
-        "ok), decisions_recorded, decision_differences (set, index, name, recorded,\n"
-        "reproduced, fragile).");
+        "ok), decisions_recorded, decision_mismatches (differences in trials that are not\n"
+        "fragile), decision_differences (set, index, name, recorded, reproduced, fragile).");
 }
 
 }  // namespace pronk::python

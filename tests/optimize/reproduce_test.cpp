@@ -17,6 +17,7 @@
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
+#include "sim/io/build_info.hpp"
 #include "sim/io/input_error.hpp"
 
 using namespace pronk;
@@ -198,6 +199,17 @@ TEST_CASE("reproduce names every trial whose decisions differ", "[optimize][repr
   CHECK(diff.index == 2);
   CHECK(diff.recorded.stabilized != diff.reproduced.stabilized);
   CHECK(diff.recorded.name == d["validation"]["trials"][2]["name"]);
+  CHECK_FALSE(diff.fragile);
+  CHECK(rep.decision_mismatches == 1);
+  // Had the perturbation run flipped that trial too (fragile), with the stabilized fraction's
+  // tolerance to match, the difference is reported but not required.
+  d["reproduction"]["validation"]["fragile_trials"] = json::array({2});
+  d["reproduction"]["validation"]["tolerance"]["metrics"]["stabilized"] = 0.5;
+  const ReproduceReport fragile = reproduce_design(d, r.path(), rp_options());
+  REQUIRE(fragile.decision_differences.size() == 1);
+  CHECK(fragile.decision_differences.front().fragile);
+  CHECK(fragile.decision_mismatches == 0);
+  CHECK(fragile.reproduced());
   // --scenarios-only does not see it.
   ReproduceOptions o = rp_options();
   o.scenarios_only = true;
@@ -213,6 +225,11 @@ TEST_CASE("a design recorded before the per-trial records reproduces the old way
   json d = r.design;
   for (const char* k : {"trials", "reproduction", "build_flags", "study_document_hash"}) d.erase(k);
   d["validation"].erase("trials");
+  // Older still: no model or stability record, and a scene written before the format gained
+  // a setting.
+  d.erase("model");
+  d.erase("stability");
+  d["scene"].erase(d["scene"].begin().key());
   const ReproduceReport rep = reproduce_design(d, r.path(), rp_options());
   CHECK_FALSE(rep.decisions_recorded);
   CHECK(rep.mode == CompareMode::kRelative);
@@ -224,7 +241,7 @@ TEST_CASE("a design recorded before the per-trial records reproduces the old way
 TEST_CASE("reproduce refuses a relative tolerance that is not a finite number > 0",
           "[optimize][reproduce][input]") {
   const Recorded r;
-  for (double bad : {std::nan(""), -1.0, 0.0, INFINITY}) {
+  for (double bad : {std::nan(""), -1.0, 0.0, HUGE_VAL}) {
     ReproduceOptions o = rp_options();
     o.rtol = bad;
     try {
@@ -258,6 +275,7 @@ TEST_CASE("design.json is read strictly: every mistyped or inconsistent value is
       {"/parameters/kp_roll", kp * 1.01, false, "/parameters/kp_roll", "the design's unit gives"},
       {"/parameters/kp_roll", json(), true, "/parameters/kp_roll", "a recorded value"},
       {"/scene/controller/kp/3", kp * 1.01, false, "/scene/controller/kp/3", "unit gives"},
+      {"/scene/extra", 1, false, "/scene/extra", "unit gives"},
       {"/unit/0", 1.5, false, "/unit/0", "[0, 1]"},
       {"/unit/3", 0.5, false, "/unit", "3 numbers"},
       {"/study_document_hash", "0123456789abcdef", false, "/study_document_hash", "hash"},
