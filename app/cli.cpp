@@ -8,6 +8,7 @@
 #include "app/bench_command.hpp"
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
+#include "app/reproduce_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
 #include "io/write/atomic_file.hpp"

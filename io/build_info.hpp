@@ -11,5 +11,8 @@ const char* version();
 /// The short git commit the build was configured at ("unknown" outside git).
 /// CMake re-configures when HEAD or its branch moves.
 const char* git_commit();
+/// The build type and compiler flags ("Release -O3 -DNDEBUG"; " sanitize", " fuzz" for
+/// those trees): with the commit and the compiler, what decides the floating-point bits.
+const char* build_flags();
 
 }  // namespace pronk
