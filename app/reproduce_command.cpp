@@ -7,8 +7,8 @@
 
 #include "app/optimize_command.hpp"
 #include "optimize/reproduce.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::app {
 

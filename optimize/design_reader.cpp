@@ -9,9 +9,9 @@
 
 #include "optimize/design_reader_detail.hpp"
 #include "optimize/parameters.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::optimize {
 

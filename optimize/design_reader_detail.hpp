@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "optimize/objective.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize::design_detail {
 

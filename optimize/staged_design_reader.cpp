@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "optimize/design_reader_detail.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 
 namespace pronk::optimize::design_detail {
 

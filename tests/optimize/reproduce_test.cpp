@@ -17,8 +17,8 @@
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
 
 using namespace pronk;
 using namespace pronk::optimize;
