@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sim/io/crash_point.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace pronk::io {
@@ -32,6 +33,7 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     ::unlink(tmp.c_str());
     throw std::runtime_error("cannot flush " + tmp + ": " + std::strerror(errno));
   }
+  crash_point();  // tests: a kill that leaves the temporary behind (sim/io/crash_point.hpp)
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string err = std::strerror(errno);
     ::unlink(tmp.c_str());
