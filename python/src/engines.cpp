@@ -1,5 +1,6 @@
 // pronk.run_map and pronk.reproduce: the robustness-map engine and the
 // reproduction of a tuned design, as `pronk map` and `pronk reproduce` run them.
+#include <cmath>
 #include <filesystem>
 
 #include "optimize/map/map_runner.hpp"
@@ -66,7 +67,17 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
                   py::arg("simulations") = o.simulations, py::arg("wall_time") = o.wall_time);
 }
 
+// rtol as the CLI's --rtol takes it: a finite number > 0 (ValueError otherwise).
+double rtol_arg(double rtol) {
+  if (!(std::isfinite(rtol) && rtol > 0.0)) {
+    throw py::value_error("rtol: expected a finite number > 0, found " +
+                          py::repr(py::float_(rtol)).cast<std::string>());
+  }
+  return rtol;
+}
+
 py::dict reproduce(const py::handle& design, const py::handle& threads, double rtol) {
+  rtol = rtol_arg(rtol);
   std::string file;
   const nlohmann::json doc = document_arg(design, &file);
   const int n = threads_arg(threads);
@@ -98,7 +109,8 @@ void bind_engines(py::module_& m) {
   m.def("reproduce", &reproduce, py::arg("design"), py::kw_only(), py::arg("threads") = 0,
         py::arg("rtol") = 1e-6,
         "Re-evaluates a design.json (path or dict) of pronk optimize and compares every\n"
-        "recorded value: bit-identical on the recording build, within rtol otherwise.\n"
+        "recorded value: bit-identical on the recording build, within rtol (a finite number\n"
+        "> 0; ValueError otherwise) on another.\n"
         "Returns reproduced, same_build, rtol, mismatches, values (name, recorded,\n"
         "reproduced, ok).");
 }

@@ -13,6 +13,7 @@
 #include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/pseudorigid/stability.hpp"
+#include "sim/reduced/run_limits.hpp"
 #include "sim/reduced/run_record.hpp"
 #include "sim/robot/robot_system.hpp"
 #include "sim/robot/thrust_law.hpp"
@@ -558,6 +559,14 @@ class RobotRun final : public run::HybridModel {
   }
   /// The run's records at its end (t, y).
   void finish(double t, const ode::Vec& y, const ode::Stepper& stepper);
+  /// A run the fixed-step rule refuses (reduced/run_limits.hpp): `diverged` at t = 0 with
+  /// the reason, the initial sample kept.
+  run::HybridEnd refuse(ode::Stepper& stepper, const ode::Vec& y0, std::string reason) {
+    stepper.reset(sys_, 0.0, y0);
+    start(stepper, y0);
+    end_run(reduced::RunStatus::kDiverged, std::move(reason));
+    return {0.0, y0};
+  }
 
   const ode::OdeSystem& system() const override { return sys_; }
   const ode::SolverOptions& integration_options() const override { return prs_.solver; }
@@ -1292,7 +1301,9 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
   auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);
-  const run::HybridEnd end = run::run_hybrid(*robot, *stepper, 0.0, y);
+  const auto too_long = reduced::fixed_step_breach(scene, robot->solver());
+  const run::HybridEnd end = too_long ? robot->refuse(*stepper, y, too_long->reason())
+                                      : run::run_hybrid(*robot, *stepper, 0.0, y);
   robot->finish(end.t, end.y, *stepper);
   return std::move(robot->result);
 }
@@ -1301,6 +1312,7 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
 
 RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  reduced::require_memory_limits(scene_in.simulation, options.record_trajectory, true);
   RobotModel model = build_robot(scene_in);
   pr::MethodChoice choice;
   const bool automatic = scene_in.pseudo_rigid.solver_auto;
