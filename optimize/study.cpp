@@ -63,7 +63,7 @@ Scenario parse_scenario(io::JsonReader r, long index) {
   s.tilt = r.vec3_or("tilt_deg", Eigen::Vector3d::Zero()) * kDeg;
   s.angular_velocity = r.vec3_or("angular_velocity", s.angular_velocity);
   s.duration = r.number_or("duration", 0.0, 0.0, 1e6);
-  s.strides = r.integer_or("strides", 0, 0, 100000000);
+  s.strides = r.integer_or("strides", 0, 0, 10000000);  // reduced::kMaxStrides
   if (r.has("disturbances")) {
     for (io::JsonReader d : r.object_array("disturbances")) {
       scene::Disturbance dist;
@@ -83,7 +83,7 @@ Scenario parse_scenario(io::JsonReader r, long index) {
 // A scenario set: default duration/strides, an explicit list and/or random samples.
 void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
   set.duration = s.number_or("duration", 5.0, 1e-6, 1e6);
-  set.strides = s.integer_or("strides", 0, 0, 100000000);
+  set.strides = s.integer_or("strides", 0, 0, 10000000);  // reduced::kMaxStrides
   if (s.has("list")) {
     long i = 0;
     for (io::JsonReader one : s.object_array("list"))

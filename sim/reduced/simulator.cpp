@@ -9,6 +9,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/reduced/rigid_body.hpp"
+#include "sim/reduced/run_limits.hpp"
 #include "sim/reduced/run_record.hpp"
 #include "sim/run/hybrid_run.hpp"
 
@@ -182,6 +183,15 @@ class ReducedRun final : public run::HybridModel {
       angle_watch_.exceeded = true;  // the initial attitude already leaves the range
     }
   }
+  /// A run the fixed-step rule refuses (run_limits.hpp): `diverged` at t = 0 with the reason,
+  /// the initial sample kept.
+  run::HybridEnd refuse(ode::Stepper& stepper, const ode::Vec& y0, std::string reason) {
+    stepper.reset(rhs_, 0.0, y0);
+    start(stepper, y0);
+    result.status = RunStatus::kDiverged;
+    result.reason = std::move(reason);
+    return {0.0, y0};
+  }
   bool take_pending_event() override { return std::exchange(pending_touchdown_, false); }
   double segment_end(double) const override {
     double t_target = scene_.simulation.duration;
@@ -250,6 +260,14 @@ class ReducedRun final : public run::HybridModel {
     result.reason = std::move(reason);
     return run::Next::kStop;
   }
+  /// |Delta E| over the flight ending at y relative to m g h; without gravity (no potential
+  /// energy, no height scale) relative to the flight's own energy, its kinetic energy (a
+  /// body at rest in zero gravity stays exactly at rest: 0).
+  double flight_energy_drift(const ode::Vec& y) const {
+    const double change = std::abs(model_.energy(y) - flight_energy_);
+    const double scale = energy_scale_ > 0.0 ? energy_scale_ : std::abs(flight_energy_);
+    return change > 0.0 ? change / scale : 0.0;
+  }
   run::Next touchdown(double t, ode::Vec& y);
   run::Next scheduled_time(double t, ode::Vec& y);
   void impulse(const control::StancePlan& plan, const BodyState& s, ode::Vec& y);
@@ -286,8 +304,7 @@ class ReducedRun final : public run::HybridModel {
 run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
   // Flight energy is conserved (torque-free ballistic flight): monitor it.
   result.monitors.max_flight_energy_drift =
-      std::max(result.monitors.max_flight_energy_drift,
-               std::abs(model_.energy(y) - flight_energy_) / energy_scale_);
+      std::max(result.monitors.max_flight_energy_drift, flight_energy_drift(y));
   result.monitors.max_event_residual =
       std::max(result.monitors.max_event_residual, std::abs(y[2] - scene_.legs.length));
   finish_stride(t);
@@ -358,12 +375,15 @@ run::Next ReducedRun::scheduled_time(double t, ode::Vec& y) {
 
 RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  require_memory_limits(scene.simulation, options.record_trajectory, options.record_strides);
   ReducedRun hybrid(scene, options);
   const RigidBodyModel& model = hybrid.model();
   auto stepper = ode::make_stepper(scene.simulation.solver, model.layout.size());
   ode::Vec y0(model.layout.size());
   model.initial_state(scene, y0);
-  const run::HybridEnd end = run::run_hybrid(hybrid, *stepper, 0.0, y0);
+  const auto too_long = fixed_step_breach(scene, scene.simulation.solver);
+  const run::HybridEnd end = too_long ? hybrid.refuse(*stepper, y0, too_long->reason())
+                                      : run::run_hybrid(hybrid, *stepper, 0.0, y0);
   hybrid.finish_stride(-1.0);  // last stride: no next touchdown, stride time 0
   RunResult& result = hybrid.result;
   finish_run(result, end.t, model.decode(end.y), hybrid.touchdowns(), scene);
