@@ -11,15 +11,15 @@
 #include <optional>
 #include <sstream>
 
-#include "io/build_info.hpp"
-#include "io/load/input_error.hpp"
-#include "io/load/scene_loader.hpp"
-#include "io/write/atomic_file.hpp"
-#include "io/write/plot.hpp"
-#include "io/write/run_output.hpp"
-#include "io/write/simulation_output.hpp"
 #include "optimize/journal.hpp"
 #include "optimize/reproduction_record.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/plot.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
