@@ -204,6 +204,22 @@ void write_design_run(const std::string& dir, const Evaluator& ev, const std::ve
   io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
 }
 
+// The tuned design on the validation starts, the nominal robot beside the perturbed ones.
+std::string validation_comparison(const StudyOutcome& o) {
+  std::ostringstream md;
+  md << "\nThe tuned design on the same " << o.validation_best.scenarios.size()
+     << " validation starts, with the nominal robot and with the robot perturbed as the set "
+        "draws it (the controller knows only the nominal numbers):\n\n| metric | nominal robot "
+        "| perturbed robot |\n|---|---|---|\n";
+  md << "| cost | " << o.validation_nominal.cost << " | " << o.validation_best.cost << " |\n";
+  for (const auto& [k, v] : o.validation_best.aggregated) {
+    const auto it = o.validation_nominal.aggregated.find(k);
+    md << "| " << k << " | " << (it != o.validation_nominal.aggregated.end() ? it->second : 0.0)
+       << " | " << v << " |\n";
+  }
+  return md.str();
+}
+
 std::string summary_markdown(const Study& st, const StudyOutcome& o) {
   std::ostringstream md;
   const auto& ev = st.evaluator;
@@ -244,6 +260,7 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
       md << "| " << k << " | " << (it != o.validation_initial.aggregated.end() ? it->second : 0.0)
          << " | " << v << " |\n";
     }
+    if (o.validation_compared) md << validation_comparison(o);
   }
   md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
      << "/design.json`), `history.csv`, `journal.jsonl`, `history.svg`, `compare.svg`, "
@@ -401,6 +418,13 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
     o.validated = true;
     o.validation_initial = val->evaluate_full(o.initial.unit);
     o.validation_best = val->evaluate_full(o.best.unit);
+    if (st.validation->compare_nominal && perturbs_robot(*st.validation)) {
+      Study nominal = st;
+      nominal.validation = with_nominal_robot(*st.validation);
+      o.validation_compared = true;
+      o.validation_nominal =
+          validation_evaluator(nominal, opt.threads, opt.farm).evaluate_full(o.best.unit);
+    }
   }
   o.wall_time = now_s() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed

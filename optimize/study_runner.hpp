@@ -32,6 +32,10 @@ struct StudyOutcome {
   bool validated = false;         ///< the study has a validation set
   Evaluation validation_initial;  ///< the starting design on the validation set
   Evaluation validation_best;     ///< the tuned design on the validation set
+  /// The validation set perturbs the robot (and "compare_nominal"): the tuned design on the
+  /// same starts with the nominal robot, reported beside validation_best.
+  bool validation_compared = false;
+  Evaluation validation_nominal;
   /// The design's per-trial tolerances and fragile trials (record_reproduction).
   nlohmann::json reproduction;
   long replayed = 0;       ///< evaluations taken from the journal on --resume

@@ -143,13 +143,14 @@ class ReducedRun final : public run::HybridModel {
 
   ReducedRun(const scene::Scene& scene, const RunOptions& options)
       : scene_(scene),
+        belief_(scene::controller_view(scene)),
         options_(options),
         pulse_(scene.model == scene::ModelKind::kPulse),
         model_(scene, /*impulse_quadrature=*/pulse_),
         rhs_(model_),
         body_controller_(scene.controller, scene.gravity, scene.legs.length, !scene.legs.body_only,
                          !model_.layout.quaternion, pulse_ ? scene.pulse.duration : 0.0),
-        leg_controller_(control::make_leg_controller(scene)),
+        leg_controller_(control::make_leg_controller(belief_)),
         touchdown_(scene.legs.length),
         fall_low_(scene.simulation.fall_min_height),
         fall_tilt_(model_.layout, scene.simulation.fall_max_tilt),
@@ -273,6 +274,9 @@ class ReducedRun final : public run::HybridModel {
   void impulse(const control::StancePlan& plan, const BodyState& s, ode::Vec& y);
 
   const scene::Scene& scene_;
+  /// The scene as the controller sees it: the robot's nominal numbers when a robust-design
+  /// scenario perturbed the robot (scene::ControllerModel).
+  const scene::Scene belief_;
   const RunOptions& options_;
   const bool pulse_;
   const RigidBodyModel model_;
@@ -311,7 +315,7 @@ run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
   ++touchdown_events_;
   if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
   const BodyState s = model_.decode(y);
-  const control::StanceContext ctx{scene_, body_controller_, *leg_controller_};
+  const control::StanceContext ctx{belief_, body_controller_, *leg_controller_};
   plan_ = control::plan_stance(ctx, touchdowns_, t, s);
   current_ = open_stride(touchdowns_++, t, s, plan_, scene_, result.warnings);
   have_stride_ = true;
@@ -322,7 +326,12 @@ run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
   }
   stance_ = true;
   stance_end_ = t + plan_.duration;
-  rhs_.set_leg_load(plan_.net_force_body, plan_.net_moment_body);
+  // The legs push at their own force limit for the planned time (max_force mode): a limit
+  // the controller does not know scales the pushes.
+  const double gain = scene_.pulse.mode == scene::PulseMode::kMaxForce
+                          ? scene_.pulse.max_force / belief_.pulse.max_force
+                          : 1.0;
+  rhs_.set_leg_load(gain * plan_.net_force_body, gain * plan_.net_moment_body);
   y.segment<3>(model_.layout.quadrature_index()).setZero();
   double peak = 0.0;
   for (const auto& f : plan_.leg_force) peak = std::max(peak, f.norm());

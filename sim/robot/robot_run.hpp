@@ -157,6 +157,10 @@ class RobotRun final : public run::HybridModel {
                                          const std::vector<Vector3d>& u) const;
 
   const scene::Scene& scene_;
+  /// The scene as the controller sees it: the robot's nominal numbers when a robust-design
+  /// scenario perturbed the robot (scene::ControllerModel). The controller layers, the
+  /// stance-time estimate, the thrust law and the leg controllers read it; the dynamics the scene.
+  const scene::Scene belief_;
   const RobotModel& model_;
   const scene::PseudoRigid& prs_;
   const size_t legs_;
