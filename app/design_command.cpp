@@ -24,6 +24,10 @@ CLI::App* add_design_command(CLI::App& app, DesignArgs& args) {
   auto& o = args.options;
   cmd->add_option("scene", args.scene_path, "The robot's scene (JSON)")->required();
   cmd->add_option("--out", args.out_dir, "Output directory")->required();
+  cmd->add_option("--set", args.overrides,
+                  "Override a scene value first: --set /json/pointer=value (repeatable), e.g. "
+                  "--set /body/mass=2.2; DIR/scene.json is the scene with them")
+      ->type_name("/PTR=VALUE");
   cmd->add_option("--model", o.final_model, "Final model: pseudo_rigid (default) or pulse")
       ->check(CLI::IsMember({"pulse", "pseudo_rigid"}));
   cmd->add_option("--budget", o.full_evaluations, "Evaluations of the final (full-model) stage")
@@ -48,7 +52,8 @@ CLI::App* add_design_command(CLI::App& app, DesignArgs& args) {
   cmd->add_option("--friction", args.friction, "Foot friction range LO,HI (default 0.6,1.2)")
       ->delimiter(',')
       ->expected(2);
-  cmd->add_flag("--nominal", args.nominal, "Tune and validate on the nominal robot only");
+  cmd->add_flag("--tune-nominal", o.tune_nominal,
+                "Tune on the nominal robot only (the validation still perturbs it)");
   cmd->add_option("--trials", o.scenarios, "Tuning trials per evaluation")
       ->check(CLI::Range(1L, 100000L));
   cmd->add_option("--validation", o.validation, "Held-out validation trials")
@@ -98,13 +103,13 @@ int run_design(DesignArgs args) {
   if (args.perturb.size() == 3)
     o.mass = args.perturb[0], o.inertia = args.perturb[1], o.leg_stiffness = args.perturb[2];
   if (args.friction.size() == 2) o.friction_lo = args.friction[0], o.friction_hi = args.friction[1];
-  o.perturb = !args.nominal;
   std::string err;
   if (!o.validate(&err)) {
     const std::string field = err.substr(0, err.find(':'));
     throw io::InputError("--" + field, "", "a valid design option", err.substr(field.size() + 2));
   }
-  const nlohmann::json scene = io::read_json_file(args.scene_path);
+  nlohmann::json scene = io::read_json_file(args.scene_path);
+  for (const auto& assignment : args.overrides) io::apply_override(scene, assignment);
   const nlohmann::json study =
       optimize::derive_design_study(scene, args.scene_path, "scene.json", o);
   io::make_directories(args.out_dir);

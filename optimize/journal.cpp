@@ -16,6 +16,7 @@
 #include "optimize/study.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
+#include "io/write/atomic_file.hpp"
 #include "io/write/crash_point.hpp"
 
 namespace pronk::optimize {

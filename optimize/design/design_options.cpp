@@ -30,7 +30,7 @@ bool DesignOptions::validate(std::string* err) const {
     return fail(err, "kick: a finite number >= 0");
   if (!(mass >= 0.0 && mass < 1.0) || !(inertia >= 0.0 && inertia < 1.0) ||
       !(leg_stiffness >= 0.0 && leg_stiffness < 1.0))
-    return fail(err, "perturbation: relative half-widths in [0, 1)");
+    return fail(err, "perturb: relative half-widths in [0, 1)");
   if (!(friction_lo > 0.0 && friction_hi >= friction_lo && std::isfinite(friction_hi)))
     return fail(err, "friction: 0 < low <= high");
   if (scenarios < 1 || validation < 1) return fail(err, "trials: at least 1");

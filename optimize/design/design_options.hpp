@@ -21,9 +21,10 @@ struct DesignOptions {
   double tilt_deg = 10.0;                 ///< largest start tilt [deg]
   double lateral_offset = 0.2;            ///< largest start lateral offset [m]
   double velocity_kick = 0.2;             ///< largest start velocity kick [m/s]
-  /// Robot perturbations of the scenarios and the validation (relative half-widths; a range
-  /// for friction). `perturb` false: nominal robots only.
-  bool perturb = true;
+  /// Robot perturbations of the scenarios and the validation (relative half-widths, 0: off;
+  /// a range for friction). `tune_nominal`: the tuning scenarios keep the nominal robot (the
+  /// validation still perturbs it: the gap to a robust design is what robust design buys).
+  bool tune_nominal = false;
   double mass = 0.15, inertia = 0.20, leg_stiffness = 0.15;
   double friction_lo = 0.6, friction_hi = 1.2;
   long scenarios = 16;    ///< tuning trials per evaluation

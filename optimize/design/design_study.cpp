@@ -153,29 +153,37 @@ void full_model_settings(const Derived& d, json* params, std::vector<std::string
   }
 }
 
-// The robot's own numbers drawn per trial: the plant, not the controller's model of it.
-json perturbations(const DesignOptions& o) {
+// The robot's own numbers drawn per trial: the plant, not the controller's model of it. The
+// inertia tensor is scaled as a whole (a flat body's principal moments cannot move apart by
+// +-20 % and stay physical); leg stiffness and friction exist in the full model only.
+json perturbations(const DesignOptions& o, bool full_model) {
   json p = json::array();
-  if (!o.perturb) return p;
   if (o.mass > 0) p.push_back({{"pointer", "/body/mass"}, {"relative", {-o.mass, o.mass}}});
-  if (o.inertia > 0) p.push_back({{"pointer", "/body/inertia"}, {"relative", {-o.inertia, o.inertia}}});
+  if (o.inertia > 0) {
+    p.push_back({{"pointer", "/body/inertia_tensor"}, {"relative", {-o.inertia, o.inertia}}});
+  }
+  if (!full_model) return p;
   if (o.leg_stiffness > 0) {
     p.push_back({{"pointer", "/pseudo_rigid/leg_stiffness"},
                  {"relative", {-o.leg_stiffness, o.leg_stiffness}}});
   }
-  p.push_back({{"pointer", "/pseudo_rigid/friction"}, {"range", {o.friction_lo, o.friction_hi}}});
+  if (o.friction_hi > o.friction_lo) {
+    p.push_back({{"pointer", "/pseudo_rigid/friction"}, {"range", {o.friction_lo, o.friction_hi}}});
+  }
   return p;
 }
 
-json scenario_set(const DesignOptions& o, long count, long seed, bool full_model) {
+json scenario_set(const DesignOptions& o, long count, long seed, bool full_model, bool perturb) {
   json random = {{"count", count},
                  {"seed", seed},
                  {"tilt_deg", {0.0, o.tilt_deg}},
                  {"lateral_offset", {0.0, o.lateral_offset}},
                  {"velocity_kick", {0.0, o.velocity_kick}}};
-  json set = {{"duration", o.duration}, {"random", random}};
-  if (full_model && o.perturb) set["perturb"] = perturbations(o);
-  return set;
+  if (perturb) {
+    const json p = perturbations(o, full_model);
+    if (!p.empty()) random["perturb"] = p;
+  }
+  return {{"duration", o.duration}, {"random", random}};
 }
 
 json objective() {
@@ -226,9 +234,9 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
   stages.push_back({{"name", "pulse"},
                     {"model", "pulse"},
                     {"parameters", pulse_names},
-                    {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 1, false)},
+                    {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 1, false, !o.tune_nominal)},
                     {"optimizer", optimizer("bobyqa", o.pulse_evaluations, seed, 0)}});
-  if (!full_model) stages[0]["validation"] = scenario_set(o, o.validation, 1000 * seed + 3, false);
+  stages[0]["validation"] = scenario_set(o, o.validation, 1000 * seed + 3, false, true);
   if (full_model) {
     stages.push_back({{"name", "full"},
                       {"model", "pseudo_rigid"},
@@ -243,13 +251,13 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
            ": the pulse model first (pulse duration and attitude gains), then " +
            (full_model ? "the full model (legs, stance feedback, trims, body gains, banking)"
                        : "nothing else (final model: pulse)") +
-           ", every trial disturbed" + (o.perturb && full_model ? " and the robot perturbed" : "") +
+           ", every trial disturbed" + (o.tune_nominal ? " (the robot nominal while tuning, perturbed in the validation)" : " and the robot perturbed") +
            ". Bounds are relative to the robot; docs/design.md gives each rule."},
       {"scene", scene_ref},
       {"scene_overrides", d.overrides},
       {"parameters", params},
-      {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 2, full_model)},
-      {"validation", scenario_set(o, o.validation, 1000 * seed + 4, full_model)},
+      {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 2, full_model, !o.tune_nominal)},
+      {"validation", scenario_set(o, o.validation, 1000 * seed + 4, full_model, true)},
       {"objective", objective()},
       {"stability", false},
       {"optimizer", optimizer("bobyqa", o.pulse_evaluations, seed, 0)},

@@ -133,6 +133,32 @@ MapJournalState resumable_map_journal(const std::string& path, const MapStudy& s
   return js;
 }
 
+/// Hands the runner's results on in task order, whatever order the workers finish them in:
+/// a result waits until every earlier task's result has been handed on, so the journal is
+/// the same bytes for any thread or rank count, and a resumed map writes the records an
+/// uninterrupted one does. A result still waiting when the map stops is computed again on
+/// --resume.
+class InTaskOrder {
+ public:
+  InTaskOrder(const std::vector<MapTask>& tasks,
+              std::function<void(const MapTask&, const json&)> deliver)
+      : tasks_(tasks), deliver_(std::move(deliver)) {}
+  void operator()(const MapTask& task, const json& r) {
+    waiting_.emplace(static_cast<size_t>(&task - tasks_.data()), r);
+    for (auto it = waiting_.find(next_); it != waiting_.end(); it = waiting_.find(next_)) {
+      deliver_(tasks_[next_], it->second);
+      waiting_.erase(it);
+      ++next_;
+    }
+  }
+
+ private:
+  const std::vector<MapTask>& tasks_;
+  std::function<void(const MapTask&, const json&)> deliver_;
+  std::map<size_t, json> waiting_;
+  size_t next_ = 0;
+};
+
 /// Phase 1: the cells not in the journal. Returns false when stopped (out says why).
 bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResult>* cells,
                    MapOutcome* out) {
@@ -151,16 +177,14 @@ bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResul
   }
   long done = out->cells_replayed;
   const double t_cells = now_s();
-  run.runner.run(
-      st, tasks,
-      [&](const MapTask& task, const json& r) {
-        run.journal.append(r);
-        (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
-        have[static_cast<size_t>(task.index)] = true;
-        ++out->cells_computed;
-        run.progress("cells", ++done, st.cells());
-      },
-      run.options.stop_flag);
+  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
+                   run.journal.append(r);
+                   (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
+                   have[static_cast<size_t>(task.index)] = true;
+                   ++out->cells_computed;
+                   run.progress("cells", ++done, st.cells());
+                 }),
+                 run.options.stop_flag);
   for (bool h : have) {
     if (!h) {
       out->status = "stopped";
@@ -197,16 +221,14 @@ bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome
   }
   long bdone = 0;
   const double t_bisect = now_s();
-  run.runner.run(
-      st, tasks,
-      [&](const MapTask& task, const json& r) {
-        run.journal.append(r);
-        out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
-        have_b[static_cast<size_t>(task.index)] = true;
-        ++out->rows_bisected;
-        run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
-      },
-      run.options.stop_flag);
+  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
+                   run.journal.append(r);
+                   out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
+                   have_b[static_cast<size_t>(task.index)] = true;
+                   ++out->rows_bisected;
+                   run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
+                 }),
+                 run.options.stop_flag);
   out->bisection_time = now_s() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)

@@ -239,7 +239,7 @@ TEST_CASE("study journals: a deleted, duplicated, swapped or inserted line is re
                                "its re-evaluation gives"));
 }
 
-TEST_CASE("--resume --verify evaluates every record, or a seeded sample, again",
+TEST_CASE("resume with --verify evaluates every record, or a seeded sample, again",
           "[cli][optimize][journal]") {
   TempDir d("journal");
   REQUIRE(study2(d, "full", {"-q"}).code == 0);
