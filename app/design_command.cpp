@@ -38,7 +38,9 @@ CLI::App* add_design_command(CLI::App& app, DesignArgs& args) {
                   "Full-model stage: bobyqa (NLopt, local) or cmaes (pagmo, global)")
       ->check(CLI::IsMember({"bobyqa", "cmaes"}));
   cmd->add_option("--population", o.population, "cmaes population")->check(CLI::Range(5L, 10000L));
-  cmd->add_option("--duty", args.duty, "Duty-cycle range LO,HI (stance / stride; default 0.14,0.26), started in its middle")
+  cmd->add_option(
+         "--duty", args.duty,
+         "Duty-cycle range LO,HI (stance / stride; default 0.14,0.26), started in its middle")
       ->delimiter(',')
       ->expected(2);
   cmd->add_option("--tilt", o.tilt_deg, "Largest start tilt of a trial [deg]");
@@ -59,7 +61,8 @@ CLI::App* add_design_command(CLI::App& app, DesignArgs& args) {
   cmd->add_option("--validation", o.validation, "Held-out validation trials")
       ->check(CLI::Range(1L, 100000L));
   cmd->add_option("--duration", o.duration, "Simulated seconds per trial");
-  cmd->add_option("--seed", o.seed, "Seed of every draw and optimizer")->check(CLI::Range(0L, 1L << 40));
+  cmd->add_option("--seed", o.seed, "Seed of every draw and optimizer")
+      ->check(CLI::Range(0L, 1L << 40));
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--resume", args.resume, "Continue the design in DIR");

@@ -18,9 +18,9 @@ struct DesignArgs {
   std::string scene_path;
   std::string out_dir;
   optimize::DesignOptions options;
-  std::vector<std::string> overrides;  ///< --set on the scene
+  std::vector<std::string> overrides;           ///< --set on the scene
   std::vector<double> duty, perturb, friction;  ///< as given: LO,HI / MASS,INERTIA,K / LO,HI
-  bool study_only = false;  ///< write the study, do not run it
+  bool study_only = false;                      ///< write the study, do not run it
   int threads = 0;
   bool resume = false;
   bool quiet = false;

@@ -18,19 +18,19 @@ struct DesignOptions {
   /// spring legs run at about 20 % (docs/design.md: every family robot completes its 10 s
   /// at 0.16-0.2 and most fall at 0.12 or 0.3).
   double duty_lo = 0.14, duty_hi = 0.26, duty = 0.2;
-  double tilt_deg = 10.0;                 ///< largest start tilt [deg]
-  double lateral_offset = 0.2;            ///< largest start lateral offset [m]
-  double velocity_kick = 0.2;             ///< largest start velocity kick [m/s]
+  double tilt_deg = 10.0;       ///< largest start tilt [deg]
+  double lateral_offset = 0.2;  ///< largest start lateral offset [m]
+  double velocity_kick = 0.2;   ///< largest start velocity kick [m/s]
   /// Robot perturbations of the scenarios and the validation (relative half-widths, 0: off;
   /// a range for friction). `tune_nominal`: the tuning scenarios keep the nominal robot (the
   /// validation still perturbs it: the gap to a robust design is what robust design buys).
   bool tune_nominal = false;
   double mass = 0.15, inertia = 0.20, leg_stiffness = 0.15;
   double friction_lo = 0.6, friction_hi = 1.2;
-  long scenarios = 16;    ///< tuning trials per evaluation
-  long validation = 32;   ///< held-out trials
-  double duration = 10.0; ///< simulated seconds per trial
-  long seed = 1;          ///< every draw and the optimizers' seeds derive from it
+  long scenarios = 16;     ///< tuning trials per evaluation
+  long validation = 32;    ///< held-out trials
+  double duration = 10.0;  ///< simulated seconds per trial
+  long seed = 1;           ///< every draw and the optimizers' seeds derive from it
 
   /// False with *err = "field: reason" when an option is out of range.
   bool validate(std::string* err) const;

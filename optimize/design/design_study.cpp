@@ -75,8 +75,8 @@ Derived derive_overrides(const json& doc, const std::string& file, const scene::
   return d;
 }
 
-json parameter(const std::string& name, const std::string& pointer, double lo, double hi,
-               bool log, double start) {
+json parameter(const std::string& name, const std::string& pointer, double lo, double hi, bool log,
+               double start) {
   json p = {{"name", name}, {"pointer", pointer}, {"lower", lo}, {"upper", hi}};
   if (log) p["log"] = true;
   p["initial"] = std::clamp(start, lo, hi);
@@ -99,7 +99,8 @@ void body_gains(const scene::Scene& s, json* params, std::vector<std::string>* p
       const double v = (k[1] == 'p' ? s.controller.kp : s.controller.kd)[axis];
       if (!(v > 0.0)) continue;
       const std::string name = std::string(k) + "_" + kAxes[axis];
-      params->push_back(gain(name, "/controller/" + std::string(k) + "/" + std::to_string(axis), v));
+      params->push_back(
+          gain(name, "/controller/" + std::string(k) + "/" + std::to_string(axis), v));
       if (axis >= 3) pulse->push_back(name);
       full->push_back(name);
     }
@@ -141,8 +142,8 @@ void full_model_settings(const Derived& d, json* params, std::vector<std::string
     params->push_back(parameter(std::string("stance_kd_") + axis[i], at + "kd/" + std::to_string(i),
                                 100.0 * inertia[i], 1600.0 * inertia[i], false, p.stance_kd[i]));
   }
-  params->push_back(parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false,
-                              p.hop_trim_gain));
+  params->push_back(
+      parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
   params->push_back(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8,
                               false, p.position_trim_gain));
   params->push_back(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0,
@@ -202,7 +203,9 @@ json optimizer(const std::string& kind, long budget, long seed, long population)
             {"seed", seed},
             {"options", {{"population", population}}}};
   }
-  return {{"library", "nlopt"}, {"algorithm", "LN_BOBYQA"}, {"max_evaluations", budget},
+  return {{"library", "nlopt"},
+          {"algorithm", "LN_BOBYQA"},
+          {"max_evaluations", budget},
           {"seed", seed}};
 }
 
@@ -222,7 +225,8 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
   params.push_back(
       parameter("pulse_duration", "/pulse/duration", d.stance_lo, d.stance_hi, false, d.stance0));
   body_gains(d.full, &params, &pulse_names, &full_names);
-  if (!full_model) pulse_names.insert(pulse_names.begin() + 1, full_names.begin(), full_names.end());
+  if (!full_model)
+    pulse_names.insert(pulse_names.begin() + 1, full_names.begin(), full_names.end());
   if (!full_model) {
     std::sort(pulse_names.begin(), pulse_names.end());
     pulse_names.erase(std::unique(pulse_names.begin(), pulse_names.end()), pulse_names.end());
@@ -231,18 +235,19 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
 
   const long seed = o.seed;
   json stages = json::array();
-  stages.push_back({{"name", "pulse"},
-                    {"model", "pulse"},
-                    {"parameters", pulse_names},
-                    {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 1, false, !o.tune_nominal)},
-                    {"optimizer", optimizer("bobyqa", o.pulse_evaluations, seed, 0)}});
+  stages.push_back(
+      {{"name", "pulse"},
+       {"model", "pulse"},
+       {"parameters", pulse_names},
+       {"scenarios", scenario_set(o, o.scenarios, 1000 * seed + 1, false, !o.tune_nominal)},
+       {"optimizer", optimizer("bobyqa", o.pulse_evaluations, seed, 0)}});
   stages[0]["validation"] = scenario_set(o, o.validation, 1000 * seed + 3, false, true);
   if (full_model) {
-    stages.push_back({{"name", "full"},
-                      {"model", "pseudo_rigid"},
-                      {"parameters", full_names},
-                      {"optimizer", optimizer(o.full_optimizer, o.full_evaluations, seed,
-                                              o.population)}});
+    stages.push_back(
+        {{"name", "full"},
+         {"model", "pseudo_rigid"},
+         {"parameters", full_names},
+         {"optimizer", optimizer(o.full_optimizer, o.full_evaluations, seed, o.population)}});
   }
   json study = {
       {"name", scene_doc.value("name", std::string("robot")) + "_design"},
@@ -251,7 +256,9 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
            ": the pulse model first (pulse duration and attitude gains), then " +
            (full_model ? "the full model (legs, stance feedback, trims, body gains, banking)"
                        : "nothing else (final model: pulse)") +
-           ", every trial disturbed" + (o.tune_nominal ? " (the robot nominal while tuning, perturbed in the validation)" : " and the robot perturbed") +
+           ", every trial disturbed" +
+           (o.tune_nominal ? " (the robot nominal while tuning, perturbed in the validation)"
+                           : " and the robot perturbed") +
            ". Bounds are relative to the robot; docs/design.md gives each rule."},
       {"scene", scene_ref},
       {"scene_overrides", d.overrides},

@@ -14,15 +14,15 @@
 #include <map>
 #include <mutex>
 
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/write/plot.hpp"
 #include "optimize/journal.hpp"
 #include "optimize/map/map_journal.hpp"
 #include "optimize/map/map_output.hpp"
 #include "optimize/output_lock.hpp"
 #include "optimize/thread_pool.hpp"
-#include "io/write/atomic_file.hpp"
-#include "io/load/input_error.hpp"
-#include "io/load/json_reader.hpp"
-#include "io/write/plot.hpp"
 
 namespace pronk::optimize::map {
 
@@ -177,13 +177,15 @@ bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResul
   }
   long done = out->cells_replayed;
   const double t_cells = now_s();
-  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
-                   run.journal.append(r);
-                   (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
-                   have[static_cast<size_t>(task.index)] = true;
-                   ++out->cells_computed;
-                   run.progress("cells", ++done, st.cells());
-                 }),
+  run.runner.run(st, tasks,
+                 InTaskOrder(tasks,
+                             [&](const MapTask& task, const json& r) {
+                               run.journal.append(r);
+                               (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
+                               have[static_cast<size_t>(task.index)] = true;
+                               ++out->cells_computed;
+                               run.progress("cells", ++done, st.cells());
+                             }),
                  run.options.stop_flag);
   for (bool h : have) {
     if (!h) {
@@ -221,14 +223,17 @@ bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome
   }
   long bdone = 0;
   const double t_bisect = now_s();
-  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
-                   run.journal.append(r);
-                   out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
-                   have_b[static_cast<size_t>(task.index)] = true;
-                   ++out->rows_bisected;
-                   run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
-                 }),
-                 run.options.stop_flag);
+  run.runner.run(
+      st, tasks,
+      InTaskOrder(tasks,
+                  [&](const MapTask& task, const json& r) {
+                    run.journal.append(r);
+                    out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
+                    have_b[static_cast<size_t>(task.index)] = true;
+                    ++out->rows_bisected;
+                    run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
+                  }),
+      run.options.stop_flag);
   out->bisection_time = now_s() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)

@@ -14,12 +14,15 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::string tripod() { return std::string(PRONK_SOURCE_DIR) + "/studies/scenes/family/tripod.json"; }
+std::string tripod() {
+  return std::string(PRONK_SOURCE_DIR) + "/studies/scenes/family/tripod.json";
+}
 
 // A small design (a few evaluations of short trials): the command's plumbing, not its result.
 std::vector<std::string> small(const std::string& out, const std::string& model) {
-  return {"design", tripod(), "--out", out, "--model", model, "--pulse-budget", "4", "--budget",
-          "3", "--trials", "2", "--validation", "2", "--duration", "2", "--threads", "2", "-q"};
+  return {"design",    tripod(), "--out",    out, "--model",      model, "--pulse-budget", "4",
+          "--budget",  "3",      "--trials", "2", "--validation", "2",   "--duration",     "2",
+          "--threads", "2",      "-q"};
 }
 
 }  // namespace
@@ -62,7 +65,8 @@ TEST_CASE("pronk design --study-only, --resume, and a directory that holds a des
   CHECK_FALSE(std::filesystem::exists(d / "out/design.json"));
   // Without --resume the directory that holds a design study is refused; with it, the same
   // options continue it.
-  check_bad_input(pronk(d, small("out", "pulse")), "--out: /: expected a directory without a design");
+  check_bad_input(pronk(d, small("out", "pulse")),
+                  "--out: /: expected a directory without a design");
   std::vector<std::string> resume = small("out", "pulse");
   resume.push_back("--resume");
   CHECK(pronk(d, resume).code == 0);
