@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -92,7 +93,7 @@ bool fail(std::string* error, const std::string& field, const std::string& value
 
 std::string number_text(double v) {
   std::ostringstream s;
-  s << v;
+  s << std::setprecision(12) << v;
   return s.str();
 }
 

@@ -1,0 +1,127 @@
+// pagmo in a study (the shipped example, studies/study2_pagmo_cmaes.json): bad optimizer
+// sections are input errors naming the pointer (exit 2), the journal is the same bytes
+// with 1 and 2 threads, a run killed with SIGKILL at an exact evaluation resumes to the
+// uninterrupted run's journal and design, and the design reproduces.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "optimize/study.hpp"
+#include "sim/io/input_error.hpp"
+#include "tests/cli/cli_support.hpp"
+
+using nlohmann::json;
+using namespace cli_support;  // NOLINT(google-build-using-namespace): test helpers
+
+namespace {
+
+const std::string kStudy = std::string(PRONK_SOURCE_DIR) + "/studies/study2_pagmo_cmaes.json";
+
+/// The example study with `overrides` ("/ptr=value"); the InputError it raises, if any.
+std::string load_error(const std::vector<std::string>& overrides, std::string* pointer) {
+  try {
+    (void)pronk::optimize::load_study(kStudy, overrides);
+  } catch (const pronk::io::InputError& e) {
+    *pointer = e.pointer();
+    return e.what();
+  }
+  return "";
+}
+
+/// `pronk optimize` of the example made small: populations of 8, 40 evaluations.
+Run optimize(const TempDir& d, const std::string& out, const std::string& threads,
+             bool resume = false) {
+  std::vector<std::string> args = {"optimize",
+                                   kStudy,
+                                   "-q",
+                                   "--threads",
+                                   threads,
+                                   "--set",
+                                   "/optimizer/max_evaluations=40",
+                                   "--set",
+                                   "/optimizer/options/population=8",
+                                   "--out",
+                                   d / out};
+  if (resume) args.push_back("--resume");
+  return cli_support::pronk(d, args);
+}
+
+}  // namespace
+
+TEST_CASE("pagmo studies: a bad optimizer section names its pointer", "[optimize][pagmo][input]") {
+  std::string pointer;
+  CHECK(load_error({}, &pointer).empty());
+  CHECK_THAT(load_error({"/optimizer/algorithm=\"nsga9\""}, &pointer),
+             Catch::EndsWith("/optimizer/algorithm: expected a pagmo algorithm pronk offers "
+                             "(cmaes, xnes, de, sade, de1220, pso_gen), found \"nsga9\""));
+  CHECK(pointer == "/optimizer/algorithm");
+  CHECK_THAT(load_error({"/optimizer/options/sigma=0.2"}, &pointer),
+             Catch::EndsWith("/optimizer/options/sigma: expected an option of pagmo cmaes "
+                             "(population, generations, ftol, xtol, sigma0, cc, cs, c1, cmu), "
+                             "found an unknown option"));
+  CHECK_THAT(load_error({"/optimizer/options/population=4"}, &pointer),
+             Catch::EndsWith("/optimizer/options/population: expected a population of at least "
+                             "5 (pagmo cmaes needs at least 5 individuals), found 4"));
+  CHECK(pointer == "/optimizer/options/population");
+  CHECK_THAT(load_error({"/optimizer/algorithm=\"sade\"", "/optimizer/options={\"population\": 6}"},
+                        &pointer),
+             Catch::Contains("expected a population of at least 7"));
+  CHECK_THAT(load_error({"/optimizer/xtol_rel=1e-4"}, &pointer),
+             Catch::EndsWith("/optimizer/xtol_rel: expected no \"xtol_rel\" with library pagmo "
+                             "(it takes no local algorithm and no derivatives; its tolerances "
+                             "are options/ftol and options/xtol), found number 0.0001"));
+  CHECK_THAT(load_error({"/optimizer/options=[]"}, &pointer),
+             Catch::Contains("/optimizer/options: expected an object of pagmo options"));
+
+  // The command line: exit 2, one line naming the study file and the pointer.
+  TempDir d("pagmo_study");
+  const Run r =
+      cli_support::pronk(d, {"optimize", kStudy, "--set", "/optimizer/options/population=3"});
+  CHECK(r.code == 2);
+  CHECK(r.err == "pronk: error: " + kStudy +
+                     ": /optimizer/options/population: expected a population of at least 5 "
+                     "(pagmo cmaes needs at least 5 individuals), found 3\n");
+}
+
+TEST_CASE("pagmo studies: 1 and 2 threads write the same journal; kill -9 and --resume too",
+          "[optimize][pagmo][journal][determinism]") {
+  TempDir d("pagmo_study");
+  const Run one = optimize(d, "t1", "1");
+  INFO(one.err);
+  REQUIRE(one.code == 0);
+  const Run two = optimize(d, "t2", "2");
+  REQUIRE(two.code == 0);
+  const std::string journal = slurp(d / "t1/journal.jsonl");
+  CHECK(journal == slurp(d / "t2/journal.jsonl"));
+  CHECK(std::count(journal.begin(), journal.end(), '\n') == 41);  // header + 5 populations of 8
+
+  // Killed right after the 13th evaluation was journaled (inside the second population).
+  ::setenv("PRONK_TEST_KILL_AFTER_EVALUATIONS", "13", 1);
+  const Run killed = optimize(d, "k", "2");
+  ::unsetenv("PRONK_TEST_KILL_AFTER_EVALUATIONS");
+  CHECK(killed.code == -1);  // died by the signal
+  const std::string partial = slurp(d / "k/journal.jsonl");
+  CHECK(std::count(partial.begin(), partial.end(), '\n') == 14);
+  CHECK(journal.rfind(partial, 0) == 0);  // a prefix of the uninterrupted journal
+
+  const Run resumed = optimize(d, "k", "1", true);
+  INFO(resumed.err);
+  REQUIRE(resumed.code == 0);
+  CHECK(slurp(d / "k/journal.jsonl") == journal);
+  const json a = json::parse(slurp(d / "t1/design.json"));
+  const json b = json::parse(slurp(d / "k/design.json"));
+  for (const char* key : {"unit", "parameters", "cost", "constraints", "metrics", "validation"}) {
+    INFO(key);
+    CHECK(a.at(key) == b.at(key));
+  }
+  CHECK(a.at("optimizer").at("library") == "pagmo");
+  CHECK(a.at("optimizer").at("evaluations") == 40);
+
+  // The design reproduces bit for bit on this build.
+  const Run rep = cli_support::pronk(d, {"reproduce", d / "k/design.json"});
+  INFO(rep.out << rep.err);
+  CHECK(rep.code == 0);
+}
