@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/method_choice.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/robot/robot_simulator.hpp"

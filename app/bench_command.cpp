@@ -19,10 +19,10 @@
 #include "app/bench_auto.hpp"
 #include "app/bench_headline.hpp"
 #include "app/bench_suite.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/plot.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/plot.hpp"
 
 #ifndef PRONK_STUDIES_DIR
 #define PRONK_STUDIES_DIR "studies"
@@ -37,7 +37,7 @@ using nlohmann::json;
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "bench",
-      "Measure speed versus accuracy (SPEC 7): work-precision of every solver on the\n"
+      "Measure speed versus accuracy: work-precision of every solver on the\n"
       "pseudo-rigid satellite (tolerances 1e-3..1e-10, internal stiffness 1e4..1e8 N/m)\n"
       "and the reduced legged hopper (steps, tolerances, stride-map fixed point), the\n"
       "fidelity ladder (impulse, pulse, rigid body, pseudo-rigid: apexes, stride-map spectral\n"
@@ -360,7 +360,7 @@ std::string machine() {
 }
 
 void progress(const BenchArgs& a, const std::string& what) {
-  // One line per stage on a terminal (SPEC 8: progress off when not a TTY or --quiet).
+  // One line per stage on a terminal (progress off when not a TTY or --quiet).
   if (!a.quiet && isatty(STDERR_FILENO)) std::fprintf(stderr, "bench: %s\n", what.c_str());
 }
 

@@ -1,4 +1,4 @@
-// `pronk bench`: the speed-versus-accuracy measurements of SPEC 7 in one run —
+// `pronk bench`: the speed-versus-accuracy measurements of docs/performance.md in one run —
 // work-precision of every solver (and internal stiffness), the fidelity ladder,
 // the quad hopper drop, and the optional peers (SUNDIALS CVODE, MuJoCo), which
 // are separate executables built only when their libraries are found: `pronk

@@ -8,8 +8,8 @@
 
 #include "optimize/map/map_engine.hpp"
 #include "optimize/map/map_study.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/reduced/simulator.hpp"
@@ -54,7 +54,7 @@ void set_cost(WorkPoint& p, const ode::SolverCounters& c) {
 
 // ---------------------------------------------------------------- satellite
 
-constexpr double kSatelliteEnd = 20.0;  // [s], SPEC case 10 / issue 3
+constexpr double kSatelliteEnd = 20.0;  // [s], Ridgely 2001, §4.4.1 / issue 3
 
 struct SatelliteRun {
   pr::RunSummary summary;
@@ -263,7 +263,7 @@ std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c) {
   }
   // Fixed-step explicit methods: RK4 is stable below h ~ 2.8 / omega_max (about
   // 1e-3 s here); Euler and RK2 are unstable for undamped vibration at any step and
-  // must end with a divergence status (SPEC case 8), which is what they show.
+  // must end with a divergence status (Ridgely 2001, §3.5.1, fig. 3.4), which is what they show.
   const std::vector<double> hs =
       c.quick ? std::vector<double>{1e-3, 5e-4} : std::vector<double>{1e-3, 5e-4, 2.5e-4};
   for (Method method : {Method::kEuler, Method::kRk2, Method::kRk4}) {
@@ -356,7 +356,7 @@ std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c) {
     s.simulation.solver.rtol = s.simulation.solver.atol = tol;
     out.push_back(hopper_point(s, tol, 0.0, run_hopper(s, c.repeat), ref));
   }
-  // The stride map's periodic orbit (SPEC 5.1) per solver tolerance.
+  // The stride map's periodic orbit (sim/simulate.hpp) per solver tolerance.
   scene::Scene map_s = hopper_scene(c, duration);
   map_s.simulation.solver.method = Method::kDopri5;
   reduced::StabilityOptions ref_o;
@@ -496,7 +496,7 @@ FidelityPoint reduced_rung(const scene::Scene& s, const BenchConfig& c) {
   return p;
 }
 
-/// The same robot in the full model with force legs (seed 2.7: leg forces at ghost-point
+/// The same robot in the full model with force legs (Ridgely 2001, §2.7: leg forces at ghost-point
 /// hips, no leg masses) and internal springs of 1e6 N/m, so that all three rungs share massless
 /// legs and differ only in the body model and the stance dynamics. One run per point (seconds per
 /// simulated second); skipped with --quick. Stability: the spectral radius of the stride map

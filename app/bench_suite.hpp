@@ -1,4 +1,4 @@
-// The measurements of `pronk bench` (SPEC 7): work-precision sweeps of every
+// The measurements of `pronk bench` (docs/performance.md): work-precision sweeps of every
 // solver on the reference scenes, the pseudo-rigid stiffness sweep, the
 // fidelity ladder and the quad hopper drop that MuJoCo is compared with. Each
 // function runs one group and returns plain records; bench_command.cpp writes
@@ -152,7 +152,7 @@ struct FidelityRung {
 };
 std::vector<FidelityRung> fidelity_rungs();
 
-/// Pseudo-rigid satellite (SPEC case 10), k = 1e6 N/m, 20 s: every solver and tolerance.
+/// Pseudo-rigid satellite (Ridgely 2001, §4.4.1), k = 1e6 N/m, 20 s: every solver and tolerance.
 std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c);
 /// The same satellite for k = 1e4 .. 1e8 N/m with RODAS4 (state and body norm) and DOPRI5.
 std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c);
@@ -170,7 +170,8 @@ LadderRobustness ladder_robustness(const BenchConfig& c);
 /// mirrors): per tolerance cost, energy-balance drift (energy_error_rel: max drift / drop
 /// energy m g 0.15 m), apex heights. JSON records.
 nlohmann::json quad_hopper_drop(const BenchConfig& c);
-/// The quad hopper drop as a mechanism document (SPEC 8 format), `t_end` simulated [s].
+/// The quad hopper drop as a mechanism document (the format of docs/pseudorigid.md), `t_end`
+/// simulated [s].
 nlohmann::json quad_hopper_mechanism(double t_end);
 
 /// Median of v (v non-empty).

@@ -8,13 +8,32 @@
 #include "app/bench_command.hpp"
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
+#include "app/reproduce_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
 
 namespace pronk::app {
+
+namespace {
+
+// A command-line error (an unknown flag, --threads 0) as the one line of any bad input,
+// instead of CLI11's two; exit code 2.
+int report_option_error(const CLI::ParseError& e) {
+  std::string what = e.what();
+  for (char& c : what) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  while (!what.empty() && what.back() == ' ') what.pop_back();
+  const io::InputError error("command line", "", "options as `pronk COMMAND --help` lists them",
+                             what);
+  std::cerr << "pronk: error: " << error.what() << "\n";
+  return 2;
+}
+
+}  // namespace
 
 int run_cli(int argc, const char* const* argv) {
   CLI::App app{
@@ -44,8 +63,7 @@ int run_cli(int argc, const char* const* argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
+    return report_option_error(e);
   }
   return run_reporting_errors([&] {
     // Every command's --out is checked before any work: a path that cannot be a

@@ -15,8 +15,8 @@
 #include "optimize/map/map_runner.hpp"
 #include "optimize/map/map_study.hpp"
 #include "optimize/map/mpi_runner.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/load/input_error.hpp"
 
 namespace pronk::app {
 

@@ -1,5 +1,5 @@
 // `pronk map STUDY.json [--threads N] [--resume] [--out DIR] [--set /ptr=value]... [--quiet]`:
-// a robustness map of a design (SPEC 6), on threads or, under mpirun, on MPI ranks.
+// a robustness map of a design (docs/maps.md), on threads or, under mpirun, on MPI ranks.
 #pragma once
 
 #include <string>

@@ -32,7 +32,7 @@ int run_on_mpi_ranks(
 #ifdef PRONK_WITH_MPI
 #include <iostream>
 
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 
 namespace pronk::app {
 

@@ -9,20 +9,20 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <thread>
 
 #include "optimize/mpi/evaluation_farm.hpp"
-#include "optimize/reproduce.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::app {
 
@@ -35,13 +35,13 @@ extern "C" void on_sigint(int) {
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
+}  // namespace
+
 int thread_count(int requested) {
   if (requested > 0) return requested;
   const unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? static_cast<int>(hw) : 1;
 }
-
-}  // namespace
 
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
@@ -58,19 +58,6 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
                   "--set /optimizer/max_evaluations=50")
       ->type_name("/PTR=VALUE");
   cmd->add_flag("--quiet,-q", args.quiet, "No progress line, no summary");
-  return cmd;
-}
-
-CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
-  CLI::App* cmd = app.add_subcommand(
-      "reproduce",
-      "Re-simulate a tuned design (design.json) and compare every recorded metric:\n"
-      "bit-identical on the recording build, within --rtol on another.");
-  cmd->add_option("design", args.design_path, "design.json written by pronk optimize")->required();
-  cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("--rtol", args.rtol, "Relative tolerance on another build (default 1e-6)")
-      ->check(CLI::PositiveNumber);
   return cmd;
 }
 
@@ -194,26 +181,6 @@ int run_optimize(const OptimizeArgs& args) {
   // N copies would each run the whole study and write the same journal.
   if (refuse_mpirun_without_mpi()) return 2;
   return run_loaded(args, load_any_study(args), nullptr);
-}
-
-int run_reproduce(const ReproduceArgs& args) {
-  const nlohmann::json design = io::read_json_file(args.design_path);
-  const optimize::ReproduceReport rep =
-      optimize::reproduce_design(design, args.design_path, thread_count(args.threads), args.rtol);
-  std::printf(
-      "reproducing %s (%s build: %s)\n", args.design_path.c_str(),
-      rep.same_build ? "same" : "different",
-      rep.same_build ? "bit-identical required" : ("rtol " + std::to_string(args.rtol)).c_str());
-  std::printf("  %-28s %22s %22s %10s  %s\n", "metric", "recorded", "reproduced", "rel. diff", "");
-  for (const auto& v : rep.values) {
-    const double diff = std::abs(v.reproduced - v.recorded);
-    const double rel = diff / std::max(std::abs(v.recorded), 1e-300);
-    std::printf("  %-28s %22.15g %22.15g %10.2e  %s\n", v.name.c_str(), v.recorded, v.reproduced,
-                diff == 0 ? 0.0 : rel, v.ok ? "ok" : "MISMATCH");
-  }
-  std::printf("%s: %ld of %zu values differ\n", rep.mismatches ? "NOT REPRODUCED" : "reproduced",
-              rep.mismatches, rep.values.size());
-  return rep.mismatches ? 1 : 0;
 }
 
 }  // namespace pronk::app

@@ -1,5 +1,4 @@
-// `pronk optimize STUDY.json [--threads N] [--resume] [--out DIR] [--set /ptr=value]...`
-// and `pronk reproduce DESIGN.json [--threads N]`.
+// `pronk optimize STUDY.json [--threads N] [--resume] [--out DIR] [--set /ptr=value]...`.
 #pragma once
 
 #include <string>
@@ -18,18 +17,11 @@ struct OptimizeArgs {
   bool quiet = false;
 };
 
-struct ReproduceArgs {
-  std::string design_path;
-  int threads = 0;
-  double rtol = 1e-6;  ///< tolerance when the build differs from the recording one
-};
-
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
-CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args);
 
 /// 0: finished (any optimizer status but failure), 1: the optimizer failed or was stopped.
 int run_optimize(const OptimizeArgs& args);
-/// 0: every recorded metric reproduced, 1: some did not.
-int run_reproduce(const ReproduceArgs& args);
+/// `requested` worker threads, or all hardware threads for 0.
+int thread_count(int requested);
 
 }  // namespace pronk::app

@@ -5,14 +5,15 @@
 #include <cstdio>
 #include <iostream>
 
-#include "sim/io/json_reader.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/mechanism_output.hpp"
-#include "sim/io/page/page_data.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/write/mechanism_output.hpp"
+#include "io/page/page_data.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
+#include "sim/reduced/setpoint_check.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::app {
@@ -71,6 +72,20 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }
 
+// The setpoint check's warnings, with the distance: `completed` alone is not the whole story.
+void print_setpoint_check(const reduced::SetpointCheck& c) {
+  if (c.far) {
+    std::printf("  warning: far from the setpoint: ended %.3g m from it (%.1f hop heights)\n",
+                c.distance, c.hop_heights);
+  }
+  if (c.never_settled) {
+    std::printf(
+        "  warning: never settled (position within 1 cm, roll and pitch within 1 deg, apex "
+        "within 5 mm from some stride to the end); ended %.3g m from the setpoint\n",
+        c.distance);
+  }
+}
+
 // One line per fact of a robot run, in any model.
 void print_robot_run(const scene::Scene& scene, const RunResult& r,
                      const reduced::RunMetrics& metrics, const std::string& dir,
@@ -99,8 +114,10 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
                 r.run.cost.wall_time * 1e3);
   }
   for (const auto& [id, count] : r.run.warnings) {
+    if (id == "far_from_setpoint" || id == "never_settled") continue;  // printed below
     std::printf("  warning: %s (%ld)\n", id.c_str(), count);
   }
+  print_setpoint_check(reduced::check_setpoint(scene, r.run, metrics));
   std::printf("  outputs in %s/\n", dir.c_str());
   print_page_line(page);
 }
@@ -126,6 +143,7 @@ int run_simulate(const SimulateArgs& args) {
                          e.what());
   }
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
+  reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
   const io::WrittenOutputs w = io::write_simulation_outputs(dir, scene, r, metrics);
   if (!args.quiet) print_robot_run(scene, r, metrics, dir, w.page);

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "sim/io/page/html_page.hpp"
-#include "sim/io/page/page_data.hpp"
+#include "io/page/html_page.hpp"
+#include "io/page/page_data.hpp"
 
 namespace pronk::app {
 

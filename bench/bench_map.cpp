@@ -1,4 +1,4 @@
-// Benchmark of `pronk map` (SPEC 6, issue 6): a 30 x 30 map with 16 trials per
+// Benchmark of `pronk map` (docs/maps.md, issue 6): a 30 x 30 map with 16 trials per
 // cell on the legged pulse model (the seed's controller, duty 10-50 % x initial
 // tilt 0-20 deg, 12 s trials, stride-map spectral radius per duty). Prints one
 // JSON object of medians over interleaved runs (every configuration once per

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "tests/pseudorigid/scenes.hpp"

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
 
 using namespace pronk;

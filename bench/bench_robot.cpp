@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/robot/fidelity.hpp"
 #include "sim/robot/robot_simulator.hpp"

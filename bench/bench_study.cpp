@@ -18,7 +18,7 @@
 #include "optimize/optimizer.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 using namespace pronk::optimize;
 

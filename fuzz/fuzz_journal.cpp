@@ -21,10 +21,8 @@ std::string sealed_lines(const std::string& input) {
 }
 
 void read(const std::string& text) {
-  try {
-    (void)pronk::optimize::parse_journal(text, "fuzz.jsonl");
-  } catch (const pronk::io::InputError&) {
-  }
+  pronk::fuzz::expect_only_input_errors(
+      [&] { (void)pronk::optimize::parse_journal(text, "fuzz.jsonl"); });
 }
 
 }  // namespace

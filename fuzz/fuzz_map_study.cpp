@@ -6,9 +6,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto doc = pronk::fuzz::document(pronk::fuzz::text(data, size));
   if (!doc) return 0;
-  try {
-    (void)pronk::optimize::map::parse_map_study(*doc, "fuzz.json", PRONK_STUDIES_DIR);
-  } catch (const pronk::io::InputError&) {
-  }
+  pronk::fuzz::expect_only_input_errors(
+      [&] { (void)pronk::optimize::map::parse_map_study(*doc, "fuzz.json", PRONK_STUDIES_DIR); });
   return 0;
 }

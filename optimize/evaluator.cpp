@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "optimize/evaluator_wire.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {

@@ -1,4 +1,4 @@
-// The objective API (SPEC 5.1): evaluate(parameters) -> Evaluation over a
+// The objective API (docs/studies.md): evaluate(parameters) -> Evaluation over a
 // scene, a scenario set, objective terms and constraints. A pure function of
 // its inputs: thread-safe, deterministic whatever the thread count; the
 // scenario runs of one evaluation go in parallel.
@@ -55,7 +55,7 @@ struct JobOutcome {
   ScenarioOutcome scenario;
 };
 
-/// One evaluation (SPEC 5.1).
+/// One evaluation.
 struct Evaluation {
   bool ok = true;       ///< false: these parameters make an invalid scene, or an internal error
   std::string failure;  ///< why, when !ok

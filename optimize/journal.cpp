@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "optimize/study.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
 

@@ -2,80 +2,125 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
+#include <cstdio>
 
-#include "optimize/study.hpp"
+#include "optimize/design_reader.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
 
 namespace {
 
-// The design's optimizer coordinates, checked against the study's dimension.
-std::vector<double> rp_design_unit(const nlohmann::json& design, const std::string& path,
-                                   int dimension) {
-  std::vector<double> unit;
-  try {
-    unit = design.at("unit").get<std::vector<double>>();
-  } catch (const nlohmann::json::exception&) {
-    throw io::InputError(path, "/unit", "an array of numbers", io::describe(design.at("unit")));
-  }
-  if (static_cast<int>(unit.size()) != dimension) {
-    throw io::InputError(path, "/unit", std::to_string(dimension) + " numbers",
-                         std::to_string(unit.size()));
-  }
-  return unit;
+std::string build_text(const std::string& commit, const std::string& compiler,
+                       const std::string& flags) {
+  return commit + ", " + compiler + ", " + (flags.empty() ? "flags not recorded" : flags);
 }
 
-// Compares the recorded cost and metrics of `record` with evaluation `e`.
-void rp_compare_all(ReproduceReport& rep, const nlohmann::json& record, const Evaluation& e,
+// Compares one recorded set (cost and metrics) with its re-evaluation `e`.
+void compare_values(ReproduceReport& rep, const RecordedSet& set, const Evaluation& e,
                     const std::string& prefix) {
-  auto compare = [&](const std::string& name, double recorded, double got) {
+  auto compare = [&](const std::string& name, double recorded, double got, double tolerance) {
     const double diff = std::abs(got - recorded);
-    const bool ok =
-        rep.same_build ? (got == recorded) : (diff <= rep.rtol * std::abs(recorded) + 1e-12);
-    if (!ok) ++rep.mismatches;
-    rep.values.push_back({name, recorded, got, ok});
+    ReproducedValue v{prefix + name, recorded, got, 0.0, false};
+    if (got == recorded) ++rep.bit_identical;
+    switch (rep.mode) {
+      case CompareMode::kBitIdentical:
+        v.ok = got == recorded;
+        break;
+      case CompareMode::kTolerance:
+        v.tolerance = tolerance;
+        v.ok = diff <= tolerance;
+        break;
+      case CompareMode::kRelative:
+        v.tolerance = rep.rtol * std::abs(recorded) + 1e-12;
+        v.ok = diff <= v.tolerance;
+        break;
+    }
+    if (!v.ok) ++rep.mismatches;
+    rep.values.push_back(v);
   };
-  compare(prefix + "cost", record.at("cost").get<double>(), e.cost);
-  for (const auto& [k, v] : record.at("metrics").items()) {
+  compare("cost", set.cost, e.cost, set.cost_tolerance.value_or(0.0));
+  for (const auto& [k, recorded] : set.metrics) {
     const auto it = e.aggregated.find(k);
-    compare(prefix + k, v.get<double>(), it != e.aggregated.end() ? it->second : NAN);
+    const auto tol = set.tolerances.find(k);
+    compare(k, recorded, it != e.aggregated.end() ? it->second : NAN,
+            tol != set.tolerances.end() ? tol->second : 0.0);
+  }
+}
+
+// Compares one set's recorded per-trial decisions with its re-evaluation `e`.
+void compare_decisions(ReproduceReport& rep, const RecordedSet& set, const Evaluation& e,
+                       const std::string& set_name) {
+  if (!set.trials) return;
+  const std::vector<TrialDecision> got = trial_decisions(e);
+  for (size_t i = 0; i < set.trials->size(); ++i) {
+    ++rep.trials_compared;
+    const TrialDecision& recorded = (*set.trials)[i];
+    const TrialDecision reproduced =
+        i < got.size() ? got[i] : TrialDecision{recorded.name, "none", false, false};
+    if (reproduced == recorded) continue;
+    const bool fragile = std::find(set.fragile.begin(), set.fragile.end(), static_cast<long>(i)) !=
+                         set.fragile.end();
+    rep.decision_differences.push_back(
+        {set_name, static_cast<long>(i), recorded, reproduced, fragile});
+    if (!fragile) ++rep.decision_mismatches;
+  }
+}
+
+// How the values are compared: bit for bit on the recording build, else the design's
+// tolerances, else a plain relative tolerance.
+void choose_mode(ReproduceReport& rep, const RecordedDesign& d, const ReproduceOptions& opt) {
+  const std::string commit = pronk::git_commit(), compiler = compiler_id(),
+                    flags = pronk::build_flags();
+  rep.same_toolchain = d.compiler == compiler && d.build_flags == flags;
+  rep.same_build = rep.same_toolchain && d.commit == commit;
+  rep.recorded_build = build_text(d.commit, d.compiler, d.build_flags);
+  rep.this_build = build_text(commit, compiler, flags);
+  rep.decisions_recorded = d.has_reproduction_record();
+  if (opt.rtol) {
+    rep.mode = CompareMode::kRelative;
+    rep.rtol = *opt.rtol;
+  } else if (rep.same_build || (opt.strict && rep.same_toolchain)) {
+    rep.mode = CompareMode::kBitIdentical;
+  } else if (d.has_reproduction_record()) {
+    rep.mode = CompareMode::kTolerance;
+  } else {
+    rep.mode = CompareMode::kRelative;
+    rep.rtol = kLegacyRtol;
   }
 }
 
 }  // namespace
 
-ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path, int threads,
-                                 double rtol) {
-  if (!design.is_object() || design.value("type", "") != "pronk_design") {
-    throw io::InputError(
-        path, "/type", "\"pronk_design\" (a design.json of pronk optimize)",
-        design.is_object() && design.contains("type") ? io::describe(design["type"]) : "nothing");
+void ReproduceOptions::validate() const {
+  if (rtol && !(std::isfinite(*rtol) && *rtol > 0.0)) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%g", *rtol);
+    throw io::InputError("--rtol", "", "a finite relative tolerance > 0", buf);
   }
-  for (const char* key : {"study_document", "unit", "metrics", "cost"}) {
-    if (!design.contains(key)) {
-      throw io::InputError(path, std::string("/") + key, "a recorded value", "nothing");
-    }
-  }
-  const std::string dir = std::filesystem::path(path).parent_path().string();
-  const Study study =
-      parse_study(design.at("study_document"), path + "#/study_document", dir.empty() ? "." : dir);
-  EvaluatorConfig cfg = study.evaluator;
-  cfg.threads = threads;
-  const Evaluator ev(cfg);
-  const std::vector<double> unit = rp_design_unit(design, path, ev.dimension());
+}
+
+ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path,
+                                 const ReproduceOptions& opt) {
+  opt.validate();
+  const RecordedDesign d = read_design(design, path);
   ReproduceReport rep;
-  rep.rtol = rtol;
-  rep.same_build = design.value("commit", "") == std::string(pronk::git_commit()) &&
-                   design.value("compiler", "") == compiler_id();
-  rp_compare_all(rep, design, ev.evaluate_full(unit), "");
-  if (study.validation && design.contains("validation") && design.at("validation").is_object()) {
-    const Evaluator val = validation_evaluator(study, threads);
-    rp_compare_all(rep, design.at("validation"), val.evaluate_full(unit), "validation ");
+  choose_mode(rep, d, opt);
+  EvaluatorConfig cfg = d.study.evaluator;
+  cfg.threads = opt.threads;
+  const Evaluator ev(cfg);
+  const Evaluation e = ev.evaluate_full(d.unit);
+  compare_values(rep, d.scenarios, e, "");
+  compare_decisions(rep, d.scenarios, e, "scenarios");
+  if (d.validation && opt.scenarios_only) {
+    rep.validation_skipped = true;
+  } else if (d.validation) {
+    const Evaluation v = validation_evaluator(d.study, opt.threads).evaluate_full(d.unit);
+    compare_values(rep, *d.validation, v, "validation ");
+    compare_decisions(rep, *d.validation, v, "validation");
   }
   return rep;
 }

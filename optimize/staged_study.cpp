@@ -1,15 +1,17 @@
 #include "optimize/staged_study.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <set>
 #include <sstream>
 
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/write/run_output.hpp"
+#include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::optimize {
 
@@ -29,16 +31,46 @@ const std::vector<std::string>& stage_study_keys() {
   return keys;
 }
 
-// The study's scene, resolved (every default explicit) with its overrides applied.
+constexpr const char* kLegStiffness = "/pseudo_rigid/leg_stiffness";
+
+// The study's scene, resolved (every default explicit) with its overrides applied. *given_leg:
+// whether the scene (with the overrides) sets the leg stiffness itself.
 json resolved_scene(io::JsonReader& r, const json& doc, const std::string& file,
-                    const std::string& base_dir) {
+                    const std::string& base_dir, bool* given_leg) {
   std::string scene_file;
   json scene_doc = read_study_scene(r, doc, file, base_dir, &scene_file);
   if (doc.contains("scene_overrides") && doc.at("scene_overrides").is_array()) {
     for (const auto& o : doc.at("scene_overrides"))
       if (o.is_string()) io::apply_override(scene_doc, o.get<std::string>());
   }
+  *given_leg = scene_doc.contains(json::json_pointer(kLegStiffness));
   return io::scene_to_json(io::parse_scene(scene_doc, scene_file));
+}
+
+// The leg stiffness unless the study fixes it (the scene sets it, or its parameter an
+// "initial"): it follows the design's stance time. Records the parameter that tunes it.
+void find_following_leg_stiffness(bool given_leg, StagedStudy* st) {
+  st->leg_stiffness_follows = !given_leg;
+  const json& params = st->document.at("parameters");
+  for (size_t i = 0; i < params.size(); ++i) {
+    if (params[i].at("pointer") != kLegStiffness) continue;
+    st->leg_stiffness_parameter = st->parameters[i].name;
+    if (params[i].contains("initial")) st->leg_stiffness_follows = false;
+  }
+}
+
+// The leg stiffness whose stance half-period is the stance time of `scene` (its pulse duration,
+// or the max-force estimate), the rule the full model's expected stance inverts.
+double following_leg_stiffness(const json& scene) {
+  const scene::Scene s = io::parse_scene(scene, "stage scene");
+  return scene::leg_stiffness_for_stance(s, scene::design_stance_time(s));
+}
+
+// The study's resolved scene with parameter `values` bound.
+json scene_at(const StagedStudy& st, const std::map<std::string, double>& values) {
+  json scene = st.scene;
+  for (const auto& p : st.parameters) scene[json::json_pointer(p.pointer)] = values.at(p.name);
+  return scene;
 }
 
 // Name, pointer and starting value of every study parameter (the stages check the rest).
@@ -60,20 +92,14 @@ std::vector<Parameter> study_parameters(io::JsonReader& r, const json& doc, cons
     Parameter par;
     par.name = p.at("name").get<std::string>();
     par.pointer = p.at("pointer").get<std::string>();
-    json::json_pointer jp;
-    try {
-      jp = json::json_pointer(par.pointer);
-    } catch (const json::exception&) {
-      throw io::InputError(r.file(), at + "/pointer", "a JSON Pointer into the scene",
-                           "\"" + par.pointer + "\"");
-    }
-    if (!scene.contains(jp) || !scene.at(jp).is_number()) {
+    const json* target = io::find_pointer(scene, par.pointer);
+    if (par.pointer.empty() || target == nullptr || !target->is_number()) {
       throw io::InputError(r.file(), at + "/pointer",
                            "a pointer to a number of the scene format (see scene.resolved.json)",
                            "\"" + par.pointer + "\", which names no number of a scene");
     }
     const json& init = p.value("initial", json());
-    par.initial = init.is_number() ? init.get<double>() : scene.at(jp).get<double>();
+    par.initial = init.is_number() ? init.get<double>() : target->get<double>();
     out.push_back(par);
   }
   return out;
@@ -135,8 +161,12 @@ Study stage_study(const StagedStudy& st, size_t k, const std::map<std::string, d
   d["name"] = st.name + "_" + stage.name;
   d["model"] = stage.model;
   for (const auto& [key, v] : stage.overrides.items()) d[key] = v;
-  json scene = st.scene;
-  for (const auto& p : st.parameters) scene[json::json_pointer(p.pointer)] = values.at(p.name);
+  json scene = scene_at(st, values);
+  // A leg stiffness no stage tunes follows the design's stance time in the full model.
+  if (stage.model == "pseudo_rigid" && st.leg_stiffness_follows &&
+      st.leg_stiffness_parameter.empty()) {
+    scene[json::json_pointer(kLegStiffness)] = following_leg_stiffness(scene);
+  }
   d["scene"] = scene;
   d.erase("scene_overrides");
   d.erase("output");
@@ -160,19 +190,19 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
   st.file = file;
   st.base_dir = base_dir;
   io::JsonReader r(doc, file, "");
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos)
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  st.name = r.path_name_or("name", "");  // the default output directory results/<name>
   if (doc.contains("model"))
     throw r.error("model", "a \"model\" in every stage, none at the top",
                   io::describe(doc["model"]));
   st.cross_evaluate = r.boolean_or("cross_evaluate", false);
-  st.scene = resolved_scene(r, doc, file, base_dir);
+  bool given_leg = false;
+  st.scene = resolved_scene(r, doc, file, base_dir, &given_leg);
   st.parameters = study_parameters(r, doc, st.scene);
   st.original = doc;
   st.document = doc;
   st.document.erase("stages");
   st.document.erase("cross_evaluate");
+  find_following_leg_stiffness(given_leg, &st);
   st.output_dir = doc.value("output", "results/" + st.name);
   std::vector<io::JsonReader> stages = r.object_array("stages");
   if (stages.empty()) throw r.error("stages", "at least one stage", "an empty list");
@@ -195,15 +225,34 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
 
 namespace {
 
+// The stage a stage starts from (nullptr: the initial design).
+const StageOutcome* start_stage(const StagedStudy& st, size_t k,
+                                const std::vector<StageOutcome>& done) {
+  const std::string& start = st.stages[k].start;
+  if (start == "initial" || (start == "previous" && k == 0)) return nullptr;
+  if (start == "previous") return &done.back();
+  for (const auto& d : done)
+    if (d.name == start) return &d;
+  return nullptr;  // unreachable: parse_stage checked the name
+}
+
 std::map<std::string, double> start_values(const StagedStudy& st, size_t k,
                                            const std::vector<StageOutcome>& done,
                                            const std::map<std::string, double>& initial) {
-  const std::string& start = st.stages[k].start;
-  if (start == "initial" || (start == "previous" && k == 0)) return initial;
-  if (start == "previous") return done.back().values;
-  for (const auto& d : done)
-    if (d.name == start) return d.values;
-  return initial;  // unreachable: parse_stage checked the name
+  const StageOutcome* from = start_stage(st, k, done);
+  std::map<std::string, double> values = from ? from->values : initial;
+  // From a reduced model into the full model: the tuned leg stiffness starts where the reduced
+  // design's stance time puts it (within its bounds), unless the study fixes it.
+  if (from && from->model != "pseudo_rigid" && st.stages[k].model == "pseudo_rigid" &&
+      st.leg_stiffness_follows && !st.leg_stiffness_parameter.empty()) {
+    const std::string& name = st.leg_stiffness_parameter;
+    for (const json& p : st.document.at("parameters")) {
+      if (p.at("name") != name) continue;
+      values[name] = std::clamp(following_leg_stiffness(scene_at(st, values)),
+                                p.at("lower").get<double>(), p.at("upper").get<double>());
+    }
+  }
+  return values;
 }
 
 json read_design(const std::string& path) {

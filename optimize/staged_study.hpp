@@ -40,6 +40,12 @@ struct StagedStudy {
   std::vector<StageSpec> stages;
   std::string output_dir;
   bool cross_evaluate = false;  ///< evaluate every stage's design in every stage
+  /// The full model's leg stiffness follows the design's stance time (the scene does not set
+  /// it, nor its parameter an "initial"): k = m (pi / Ts)^2 / n, Ts the pulse duration (or
+  /// the max-force estimate). Tuned (leg_stiffness_parameter), it starts there when a stage
+  /// goes from a reduced model to the full model; untuned, every full-model stage uses it.
+  bool leg_stiffness_follows = false;
+  std::string leg_stiffness_parameter;  ///< the parameter that tunes it, if any
 };
 
 /// True when the study document has "stages".

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "sim/io/json_reader.hpp"
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::optimize {
 
@@ -126,14 +126,9 @@ Parameter parse_parameter(io::JsonReader& p, const json& resolved,
   par.name = p.string_or("name", "");
   if (par.name.empty()) throw p.error("name", "a parameter name", "nothing");
   par.pointer = p.string_or("pointer", "");
-  json::json_pointer jp;
-  try {
-    jp = json::json_pointer(par.pointer);
-  } catch (const json::exception& e) {
-    throw p.error("pointer", "a JSON Pointer into the scene", "\"" + par.pointer + "\"");
-  }
   // The resolved scene holds every number explicitly: the pointer must name one.
-  if (par.pointer.empty() || !resolved.contains(jp) || !resolved.at(jp).is_number()) {
+  const json* target = io::find_pointer(resolved, par.pointer);
+  if (par.pointer.empty() || target == nullptr || !target->is_number()) {
     throw p.error("pointer", "a pointer to a number of the scene format (see scene.resolved.json)",
                   "\"" + par.pointer + "\", which names no number of a scene");
   }
@@ -157,7 +152,7 @@ Parameter parse_parameter(io::JsonReader& p, const json& resolved,
   }
   // The start is the scene's own value (its default when the scene does not set it),
   // unless "initial" says otherwise; a start outside the bounds is an error, not a clamp.
-  const double current = resolved.at(jp).get<double>();
+  const double current = target->get<double>();
   if (!p.has("initial") && !(current >= par.lower && current <= par.upper)) {
     throw p.error("initial",
                   "a start within [lower, upper] for parameter \"" + par.name +
@@ -343,10 +338,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   st.file = file;
   st.document = doc;
   io::JsonReader r(doc, file, "");
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos) {
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
-  }
+  st.name = r.path_name_or("name", "");  // the default output directory results/<name>
   r.string_or("description", "");
   // The scene: a path (relative to the study file) or an inline object, plus overrides.
   std::string scene_file;

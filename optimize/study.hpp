@@ -1,6 +1,6 @@
-// Study files (SPEC 5.3): the scene, parameters, scenarios, objective,
+// Study files (docs/studies.md): the scene, parameters, scenarios, objective,
 // constraints, optimizer and output directory of one optimization, loaded
-// with the error discipline of SPEC 8.
+// with the error discipline of docs/reliability.md.
 #pragma once
 
 #include <optional>
@@ -11,7 +11,7 @@
 
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
-#include "sim/io/json_reader.hpp"
+#include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
 

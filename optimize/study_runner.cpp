@@ -8,16 +8,18 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "optimize/journal.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/build_info.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/plot.hpp"
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
+#include "optimize/reproduction_record.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/plot.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/simulation_output.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
@@ -353,14 +355,17 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
                   {"initial_cost", o.validation_initial.cost},
                   {"cost", o.validation_best.cost},
                   {"initial_metrics", metrics_json(o.validation_initial)},
-                  {"metrics", metrics_json(o.validation_best)}};
+                  {"metrics", metrics_json(o.validation_best)},
+                  {"trials", to_json(trial_decisions(o.validation_best))}};
   }
   return {{"type", "pronk_design"},
           {"study", st.name},
           {"study_hash", st.hash},
+          {"study_document_hash", parse_study(study, st.file, ".").hash},
           {"version", pronk::version()},
           {"commit", pronk::git_commit()},
           {"compiler", compiler_id()},
+          {"build_flags", pronk::build_flags()},
           {"seed", st.optimizer.seed},
           {"threads", threads},
           {"wall_time_s", o.wall_time},
@@ -377,6 +382,8 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
           {"constraints", o.best.constraints},
           {"feasible", o.result.best_feasible},
           {"metrics", metrics_json(o.best)},
+          {"trials", to_json(trial_decisions(o.best))},
+          {"reproduction", o.reproduction},
           {"model", std::string(scene::to_string(o.best.model))},
           {"stability",
            {{"method", o.best.stability_method},
@@ -450,13 +457,19 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   o.initial = evaluator.evaluate_full(evaluator.initial_point());
   o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
                                                            : o.result.best_x);
+  std::optional<Evaluator> val;
   if (st.validation) {
-    const Evaluator val = validation_evaluator(st, opt.threads, opt.farm);
+    val.emplace(validation_evaluator(st, opt.threads, opt.farm));
     o.validated = true;
-    o.validation_initial = val.evaluate_full(o.initial.unit);
-    o.validation_best = val.evaluate_full(o.best.unit);
+    o.validation_initial = val->evaluate_full(o.initial.unit);
+    o.validation_best = val->evaluate_full(o.best.unit);
   }
   o.wall_time = now_s() - t0;
+  // What another build needs to reproduce the design honestly: the perturbation run (timed
+  // on its own: the study's wall time stays the optimization's and the validation's).
+  o.reproduction = record_reproduction(evaluator, o.best, val ? &*val : nullptr,
+                                       val ? &o.validation_best : nullptr);
+  o.reproduction["wall_time_s"] = now_s() - t0 - o.wall_time;
 
   write_history(o.out_dir, read_journal(journal_path), evaluator);
   io::write_file_atomic(o.out_dir + "/design.json",

@@ -27,8 +27,10 @@ struct StudyOutcome {
   bool validated = false;         ///< the study has a validation set
   Evaluation validation_initial;  ///< the starting design on the validation set
   Evaluation validation_best;     ///< the tuned design on the validation set
-  long replayed = 0;              ///< evaluations taken from the journal on --resume
-  double wall_time = 0.0;         ///< [s]
+  /// The design's per-trial tolerances and fragile trials (record_reproduction).
+  nlohmann::json reproduction;
+  long replayed = 0;       ///< evaluations taken from the journal on --resume
+  double wall_time = 0.0;  ///< [s]
 };
 
 /// Runs the study. Throws io::InputError for a journal of another study or

@@ -36,7 +36,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options = {});
 /// this robot (the full model's geometry checks); the reduced models build any scene.
 void check_buildable(const scene::Scene& scene);
 
-/// Stability of the gait (SPEC 5.1): the spectral radius of the linearised
+/// Stability of the gait (docs/studies.md): the spectral radius of the linearised
 /// stride-to-stride map, and how it was obtained.
 struct StabilityEstimate {
   bool ok = false;

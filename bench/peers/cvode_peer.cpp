@@ -1,5 +1,5 @@
 // Peer of `pronk bench`: SUNDIALS CVODE 6 (BDF, Newton) integrating pronk's own
-// MechanismSystem right-hand side on the seed's satellite (SPEC case 10: four
+// MechanismSystem right-hand side on the seed's satellite (Ridgely 2001, §4.4.1: four
 // 1 kg masses, six internal springs, 20 s), with the linear solver fed three
 // ways: dense LU with pronk's analytic Jacobian, sparse KLU with the same
 // Jacobian (when SUNDIALS was built with KLU), and dense LU with CVODE's own
@@ -33,8 +33,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/ode/sundials_jacobian.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "tests/pseudorigid/scenes.hpp"

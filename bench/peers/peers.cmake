@@ -1,4 +1,4 @@
-# Peers of `pronk bench` (SPEC 7): separate executables, built only when their
+# Peers of `pronk bench` (docs/performance.md): separate executables, built only when their
 # Debian packages are installed (scripts/setup.sh installs them with
 # PRONK_WITH_PEERS=1). `pronk bench` runs the ones it finds beside itself and
 # merges their JSON output; without them it reports them as unavailable.

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/simulate.hpp"
@@ -64,7 +64,7 @@ void apply_derived(const MapStudy& st, const double* values, scene::Scene& s) {
     s.initial.velocity += kick_size * Eigen::Vector3d(std::cos(kick_dir), std::sin(kick_dir), 0);
 }
 
-// Stride-map spectral radius of a scene in its model (SPEC 5.1; sim/simulate.hpp says how).
+// Stride-map spectral radius of a scene in its model (sim/simulate.hpp says how).
 void stability_of(const scene::Scene& s, CellResult& c) {
   c.has_stability = true;
   const StabilityEstimate e = analyze_stability(s);

@@ -1,4 +1,4 @@
-// The robustness-map engine (SPEC 6): the scene of a cell, its seeded
+// The robustness-map engine (docs/maps.md): the scene of a cell, its seeded
 // disturbance trials under one or two models, per-cell summaries, and the
 // bisection of the stability boundary along axis 0. Every function is a pure
 // function of the study and its arguments: thread-safe, deterministic, so the

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "sim/io/build_info.hpp"
+#include "io/build_info.hpp"
 
 namespace pronk::optimize::map {
 

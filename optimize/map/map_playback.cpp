@@ -7,7 +7,7 @@
 
 #include "optimize/map/map_engine.hpp"
 #include "optimize/scenario.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize::map {

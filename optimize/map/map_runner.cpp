@@ -17,10 +17,10 @@
 #include "optimize/journal.hpp"
 #include "optimize/map/map_output.hpp"
 #include "optimize/thread_pool.hpp"
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/plot.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/write/plot.hpp"
 
 namespace pronk::optimize::map {
 

@@ -1,4 +1,4 @@
-// Running a robustness map (SPEC 6): the cells, then the boundary bisection of
+// Running a robustness map (docs/maps.md): the cells, then the boundary bisection of
 // every row, as independent tasks handed to a TaskRunner (threads on one
 // machine, or MPI ranks); a JSON-lines journal of finished tasks for --resume;
 // the result files written atomically by the one process that owns them.

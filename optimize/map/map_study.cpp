@@ -5,10 +5,11 @@
 #include <filesystem>
 
 #include "optimize/study.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
+#include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::optimize::map {
 
@@ -78,18 +79,13 @@ void parse_axis_kind(io::JsonReader& r, const std::string& kind, const json& sce
   if (kind == "pointer") {
     a.kind = AxisKind::kPointer;
     a.pointer = r.string_or("pointer", "");
-    json::json_pointer jp;
-    try {
-      jp = json::json_pointer(a.pointer);
-    } catch (const json::exception&) {
-      throw r.error("pointer", "a JSON Pointer into the scene", "\"" + a.pointer + "\"");
-    }
-    if (a.pointer.empty() || !scene_doc.contains(jp) || !scene_doc.at(jp).is_number()) {
-      throw r.error("pointer", "a pointer to a number of the resolved scene",
-                    "\"" + a.pointer + "\"" +
-                        (a.pointer.empty() || !scene_doc.contains(jp)
-                             ? " (no such value)"
-                             : " (" + io::describe(scene_doc.at(jp)) + ")"));
+    const json* target = io::find_pointer(scene_doc, a.pointer);
+    if (a.pointer.empty() || target == nullptr || !target->is_number()) {
+      throw r.error(
+          "pointer", "a pointer to a number of the resolved scene",
+          "\"" + a.pointer + "\"" +
+              (a.pointer.empty() || target == nullptr ? " (no such value)"
+                                                      : " (" + io::describe(*target) + ")"));
     }
   } else if (kind == "duty_cycle") {
     a.kind = AxisKind::kDutyCycle;
@@ -256,9 +252,7 @@ DutySetting duty_setting(const scene::Scene& s) {
 }
 
 double leg_stiffness_for_duty(const scene::Scene& s, double duty) {
-  const double T = pulse_duration_for_duty(s, duty);
-  const double n = static_cast<double>(std::max<size_t>(s.legs.hips.size(), 1));
-  return s.body.mass * M_PI * M_PI / (n * T * T);
+  return scene::leg_stiffness_for_stance(s, pulse_duration_for_duty(s, duty));
 }
 
 void apply_duty(scene::Scene& s, double duty) {
@@ -466,9 +460,7 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
     throw r.error("kind", "\"map\" (a robustness-map study)",
                   doc.contains("kind") ? io::describe(doc.at("kind")) : "nothing");
   }
-  st.name = r.string_or("name", "");
-  if (st.name.empty() || st.name.find('/') != std::string::npos)
-    throw r.error("name", "a non-empty study name without '/'", "\"" + st.name + "\"");
+  st.name = r.path_name_or("name", "");  // the default output directory results/<name>
   r.string_or("description", "");
   const json scene_doc = map_study_scene_doc(r, doc, file, base_dir, &st);
   st.base_scene = io::parse_scene(scene_doc, st.scene_file);

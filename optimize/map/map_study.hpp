@@ -1,7 +1,7 @@
-// Robustness-map studies (SPEC 6): a scene, one or two axes, seeded disturbance
+// Robustness-map studies (docs/maps.md): a scene, one or two axes, seeded disturbance
 // trials per cell, one or two models to compare, the definition of
 // "stabilized", and the boundary resolution. Loaded from `"kind": "map"` study
-// files with the error discipline of SPEC 8 (file, JSON Pointer, expected,
+// files with the error discipline of docs/reliability.md (file, JSON Pointer, expected,
 // found; unknown keys are errors).
 #pragma once
 

@@ -22,7 +22,7 @@
 #include <thread>
 #include <utility>
 
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 #endif
 
 namespace pronk::optimize::mpi {

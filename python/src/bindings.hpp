@@ -11,7 +11,7 @@
 #include <pybind11/stl.h>
 #include <nlohmann/json.hpp>
 
-#include "sim/io/table.hpp"
+#include "io/write/table.hpp"
 
 namespace pronk::python {
 

@@ -1,9 +1,9 @@
 #include <cmath>
 #include <thread>
 
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "python/src/bindings.hpp"
-#include "sim/io/json_reader.hpp"
-#include "sim/io/scene_loader.hpp"
 
 namespace pronk::python {
 

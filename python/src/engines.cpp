@@ -2,11 +2,12 @@
 // reproduction of a tuned design, as `pronk map` and `pronk reproduce` run them.
 #include <filesystem>
 
+#include "io/load/scene_loader.hpp"
 #include "optimize/map/map_runner.hpp"
 #include "optimize/map/map_study.hpp"
 #include "optimize/reproduce.hpp"
 #include "python/src/bindings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "python/src/gil_probe.hpp"
 
 namespace pronk::python {
 
@@ -55,7 +56,7 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
     opt.out_dir = py::module_::import("os").attr("fspath")(out).cast<std::string>();
   mp::MapOutcome o;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     o = mp::run_map(st, opt);
   }
   py::list boundaries;
@@ -66,23 +67,38 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
                   py::arg("simulations") = o.simulations, py::arg("wall_time") = o.wall_time);
 }
 
-py::dict reproduce(const py::handle& design, const py::handle& threads, double rtol) {
+py::dict reproduce(const py::handle& design, const py::handle& threads, const py::handle& rtol) {
   std::string file;
   const nlohmann::json doc = document_arg(design, &file);
-  const int n = threads_arg(threads);
+  optimize::ReproduceOptions opt;
+  opt.threads = threads_arg(threads);
+  if (!rtol.is_none()) opt.rtol = rtol.cast<double>();
   optimize::ReproduceReport rep;
   {
-    py::gil_scoped_release nogil;
-    rep = optimize::reproduce_design(doc, file, n, rtol);
+    ReleaseGil nogil;
+    rep = optimize::reproduce_design(doc, file, opt);
   }
-  py::list values;
+  py::list values, decisions;
   for (const auto& v : rep.values) {
     values.append(py::dict(py::arg("name") = v.name, py::arg("recorded") = v.recorded,
-                           py::arg("reproduced") = v.reproduced, py::arg("ok") = v.ok));
+                           py::arg("reproduced") = v.reproduced, py::arg("tolerance") = v.tolerance,
+                           py::arg("ok") = v.ok));
   }
-  return py::dict(py::arg("reproduced") = rep.mismatches == 0,
-                  py::arg("same_build") = rep.same_build, py::arg("rtol") = rep.rtol,
-                  py::arg("mismatches") = rep.mismatches, py::arg("values") = values);
+  for (const auto& d : rep.decision_differences) {
+    decisions.append(
+        py::dict(py::arg("set") = d.set, py::arg("index") = d.index,
+                 py::arg("name") = d.recorded.name, py::arg("recorded") = d.recorded.describe(),
+                 py::arg("reproduced") = d.reproduced.describe(), py::arg("fragile") = d.fragile));
+  }
+  const char* mode = rep.mode == optimize::CompareMode::kBitIdentical ? "bit-identical"
+                     : rep.mode == optimize::CompareMode::kTolerance  ? "tolerance"
+                                                                      : "rtol";
+  return py::dict(py::arg("reproduced") = rep.reproduced(), py::arg("same_build") = rep.same_build,
+                  py::arg("mode") = mode, py::arg("rtol") = rep.rtol,
+                  py::arg("mismatches") = rep.mismatches, py::arg("values") = values,
+                  py::arg("decisions_recorded") = rep.decisions_recorded,
+                  py::arg("decision_mismatches") = rep.decision_mismatches,
+                  py::arg("decision_differences") = decisions);
 }
 
 }  // namespace
@@ -96,11 +112,14 @@ void bind_engines(py::module_& m) {
         "arrays, cells.csv's numbers), boundaries, summary (summary.json), simulations,\n"
         "wall_time. The GIL is released while it runs.");
   m.def("reproduce", &reproduce, py::arg("design"), py::kw_only(), py::arg("threads") = 0,
-        py::arg("rtol") = 1e-6,
-        "Re-evaluates a design.json (path or dict) of pronk optimize and compares every\n"
-        "recorded value: bit-identical on the recording build, within rtol otherwise.\n"
-        "Returns reproduced, same_build, rtol, mismatches, values (name, recorded,\n"
-        "reproduced, ok).");
+        py::arg("rtol") = py::none(),
+        "Re-evaluates a design.json (path or dict) of pronk optimize as `pronk reproduce`\n"
+        "does: the per-trial decisions must be identical, and every recorded value\n"
+        "bit-identical on the recording build, within the design's recorded tolerance on\n"
+        "another, or within rtol when given (a finite number > 0). Returns reproduced,\n"
+        "same_build, mode, rtol, mismatches, values (name, recorded, reproduced, tolerance,\n"
+        "ok), decisions_recorded, decision_mismatches (differences in trials that are not\n"
+        "fragile), decision_differences (set, index, name, recorded, reproduced, fragile).");
 }
 
 }  // namespace pronk::python

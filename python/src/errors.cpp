@@ -1,7 +1,7 @@
 // pronk.InputError: bad input (a ValueError) carrying what the CLI prints on exit 2:
 // the file, the JSON Pointer, what was expected and what was found.
+#include "io/load/input_error.hpp"
 #include "python/src/bindings.hpp"
-#include "sim/io/input_error.hpp"
 
 namespace pronk::python {
 

@@ -1,6 +1,7 @@
 // The extension module pronk._pronk; the package pronk (python/pronk/) re-exports it.
+#include "io/build_info.hpp"
 #include "python/src/bindings.hpp"
-#include "sim/io/build_info.hpp"
+#include "python/src/gil_probe.hpp"
 
 PYBIND11_MODULE(_pronk, m) {
   m.doc() = "pronk: simulate and tune robots that run by ballistic hops";
@@ -10,4 +11,5 @@ PYBIND11_MODULE(_pronk, m) {
   pronk::python::bind_simulate(m);
   pronk::python::bind_study(m);
   pronk::python::bind_engines(m);
+  pronk::python::bind_gil_probe(m);
 }

@@ -1,7 +1,7 @@
 #include "python/src/scene_object.hpp"
 
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::python {
 

@@ -3,14 +3,16 @@
 // (summary.json, trajectory.csv, strides.csv; energy.csv and feet.csv for the
 // full model) as dicts and NumPy arrays, from the same functions.
 #include "sim/simulate.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/robot_output.hpp"
+#include "io/write/simulation_output.hpp"
 #include "python/src/bindings.hpp"
+#include "python/src/gil_probe.hpp"
 #include "python/src/scene_object.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/robot_output.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/io/simulation_output.hpp"
 #include "sim/reduced/metrics.hpp"
+#include "sim/reduced/setpoint_check.hpp"
 
 namespace pronk::python {
 
@@ -69,14 +71,17 @@ PyResult simulate_scene(const py::handle& scene_obj, const py::handle& model,
   RunResult r;
   nlohmann::json summary;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     try {
       r = simulate(scene);
     } catch (const std::invalid_argument& e) {
       throw io::InputError(out.scene.file, "/pseudo_rigid", "a robot the full model can build",
                            e.what());
     }
-    summary = io::simulation_summary_json(scene, r, reduced::compute_metrics(scene, r.run));
+    const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
+    // The setpoint check's warnings, as `pronk simulate` writes them (summary.json).
+    reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
+    summary = io::simulation_summary_json(scene, r, metrics);
   }
   out.status = summary.at("status").get<std::string>();
   out.reason = r.run.reason;

@@ -6,14 +6,15 @@
 #include <filesystem>
 #include <memory>
 
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "optimize/evaluator.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
 #include "python/src/bindings.hpp"
+#include "python/src/gil_probe.hpp"
 #include "python/src/scene_object.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
 
 namespace pronk::python {
 
@@ -127,7 +128,7 @@ py::tuple evaluate(PyStudy& s, const py::handle& x) {
   const std::vector<double> u = s.unit_of(x);
   optimize::Evaluation e;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     e = s.evaluator().evaluate_full(u);
   }
   s.last_wall_time = e.wall_time;  // under the GIL again
@@ -139,7 +140,7 @@ py::tuple evaluate_batch(const PyStudy& s, const py::handle& xs) {
   for (const auto& x : xs) us.push_back(s.unit_of(x));
   std::vector<optimize::Evaluation> es;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     es = s.evaluator().evaluate_full_batch(us);
   }
   const auto n = static_cast<py::ssize_t>(es.size());
@@ -159,7 +160,7 @@ py::dict evaluate_full(const PyStudy& s, const py::handle& x) {
   const std::vector<double> u = s.unit_of(x);
   optimize::Evaluation e;
   {
-    py::gil_scoped_release nogil;
+    ReleaseGil nogil;
     e = s.evaluator().evaluate_full(u);
   }
   py::list scenarios;
@@ -197,7 +198,7 @@ PyScene scene_at(const PyStudy& s, const py::handle& x) {
 std::vector<double> time_native(const PyStudy& s, const py::handle& x, int repeats) {
   const std::vector<double> u = s.unit_of(x);
   std::vector<double> seconds;
-  py::gil_scoped_release nogil;
+  ReleaseGil nogil;
   for (int i = 0; i < repeats; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     const optimize::Evaluation e = s.evaluator().evaluate_full(u);

@@ -1,9 +1,6 @@
 """pronk.simulate against `pronk simulate` of the same build: the same numbers, bit for bit
 (summary.json, trajectory.csv, strides.csv; energy.csv and feet.csv in the full model)."""
 import json
-import sys
-import threading
-import time
 
 import numpy as np
 import pytest
@@ -123,28 +120,3 @@ def test_bad_values_and_overrides_raise_with_pointer(source_dir):
     assert info.value.pointer.startswith("/pseudo_rigid")
     with pytest.raises(pronk.InputError):
         pronk.load_scene(path.parent / "does_not_exist.json")
-
-
-def test_gil_is_released_while_simulating(source_dir):
-    # With a long switch interval the worker thread never gives the GIL up on its own:
-    # the main thread can only run while the worker is inside simulate if simulate
-    # released it.
-    path = source_dir / "studies" / "scenes" / "case2_legged_impulse.json"
-    started, result = threading.Event(), []
-    old = sys.getswitchinterval()
-    sys.setswitchinterval(30.0)
-    try:
-        def worker():
-            started.set()
-            result.append(pronk.simulate(path, overrides={"/simulation/duration": 60}))
-
-        t = threading.Thread(target=worker)
-        t.start()
-        started.wait()
-        time.sleep(0)
-        ran_during = t.is_alive() and not result
-        t.join()
-    finally:
-        sys.setswitchinterval(old)
-    assert ran_during
-    assert result[0].status in ("completed", "fell", "diverged")

@@ -93,11 +93,22 @@ def test_reproduce_wraps_the_cli(source_dir, run_cli):
     rep = pronk.reproduce(path, threads=2)
     cli = run_cli("reproduce", path, "--threads", "1")
     assert rep["reproduced"] == (cli.returncode == 0)
-    assert len(rep["values"]) == int(cli.stdout.strip().splitlines()[-1].split(" of ")[1].split()[0])
+    last = cli.stdout.strip().splitlines()[-1]
+    assert len(rep["values"]) == int(last.split(" of ")[1].split()[0])
     assert {v["name"] for v in rep["values"]} >= {"cost", "validation cost", "stabilized"}
+    # The committed design records its trials' decisions: 16 scenarios, 64 held out.
+    assert rep["decisions_recorded"] and rep["decision_differences"] == []
+    assert "0 of 80 trial decisions differ" in last
+    assert all(v["tolerance"] >= 0 for v in rep["values"])
     with pytest.raises(pronk.InputError) as info:
         pronk.reproduce({"type": "something else"})
     assert info.value.pointer == "/type"
+    # rtol, when given, is a finite number > 0.
+    for bad in (-1.0, 0.0, float("nan"), float("inf")):
+        with pytest.raises(pronk.InputError) as info:
+            pronk.reproduce(path, rtol=bad)
+        assert info.value.file == "--rtol"
+    assert pronk.reproduce(path, threads=2, rtol=1e-9)["mode"] == "rtol"
 
 
 def test_failed_point_is_data_and_bad_study_raises(study2_path):

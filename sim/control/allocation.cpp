@@ -1,4 +1,4 @@
-// Impulse allocation (seed 2.3, 2.5.3): per-leg linear impulses p_i applied at
+// Impulse allocation (Ridgely 2001, §2.3, 2.5.3): per-leg linear impulses p_i applied at
 // the hips r_i (body frame, relative to the CoM) that produce a requested net
 // linear impulse P and angular impulse H about the CoM.
 //
@@ -44,7 +44,7 @@
 // equals the limit (the direction of (P, H) is kept, its magnitude is not).
 //
 // ---------------------------------------------------------------------------
-// kSeed (seed eq. 2.7-2.8, corrected). Equal share p_i⁰ = (P_x/N, 0, P_z/N),
+// kSeed (Ridgely 2001, eq. 2.7-2.8, corrected). Equal share p_i⁰ = (P_x/N, 0, P_z/N),
 // then per-leg additions δp_i = (c r_y,i, 0, a r_x,i + b r_y,i).
 //
 // The equal shares produce moment Σ r_i × p⁰ = (Σ r_i) × p⁰; the additions must
@@ -61,7 +61,7 @@
 //   -(Σ r_y²) c                          = H'_z
 //   (Σ r_x r_y) a + (Σ r_y²) b           = H'_x
 //   -(Σ r_x²) a - (Σ r_x r_y) b          = H'_y - (Σ r_y r_z) c
-// (the printed seed eq. 2.7 has the sign of the Σ r_y r_z c term wrong).
+// (eq. 2.7 as printed in Ridgely 2001 has the sign of the Σ r_y r_z c term wrong).
 // The 2×2 determinant is Σr_x² Σr_y² - (Σ r_x r_y)² ≥ 0 (Cauchy-Schwarz); it is
 // zero iff all (r_x, r_y) are proportional, i.e. the hips project onto one line
 // through the CoM (e.g. a trot diagonal pair).

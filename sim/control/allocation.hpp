@@ -1,4 +1,4 @@
-// Impulse allocation: the middle layer of the control hierarchy (seed 2.3,
+// Impulse allocation: the middle layer of the control hierarchy (Ridgely 2001, §2.3,
 // 2.5.3). Turns the body controller's net linear impulse P and angular impulse
 // H (both body frame) into per-leg linear impulses applied at the hips.
 #pragma once
@@ -14,7 +14,7 @@ using Vec3 = Eigen::Vector3d;
 
 /// Which allocation scheme to use.
 enum class AllocationScheme {
-  /// Seed eq. 2.7-2.8 with the corrected H_y equation: P shared equally among
+  /// Ridgely 2001, eq. 2.7-2.8, with the corrected H_y equation: P shared equally among
   /// active legs, moments from per-leg additions Px=c ry, Py=0, Pz=a rx+b ry.
   /// Exact only for layouts symmetric about the CoM (Σrx = Σry = 0 over active legs).
   kSeed,

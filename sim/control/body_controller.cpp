@@ -30,7 +30,7 @@ BodyCommand PdBodyController::command(double t, const BodyState& s) const {
   const Vector3d ev = v_d - s.velocity;
   c.P_world.x() = kp[0] * e.x() + kd[0] * ev.x();
   c.P_world.y() = kp[1] * e.y() + kd[1] * ev.y();
-  // Hop-height law (seed 2.4.1): Kd_z = m and setpoint sqrt(2 g h) make the next
+  // Hop-height law (Ridgely 2001, §2.4.1): Kd_z = m and setpoint sqrt(2 g h) make the next
   // apex exactly h above the touchdown height.
   double v1 = takeoff_speed_;
   if (stance_duration_ > 0.0) {

@@ -1,4 +1,4 @@
-// The top layer of the control hierarchy (seed 2.3-2.5.2): at touchdown the
+// The top layer of the control hierarchy (Ridgely 2001, §2.3-2.5.2): at touchdown the
 // body controller turns the measured body state into the net linear impulse P
 // (world frame) and angular impulse H (body frame) the legs must deliver.
 #pragma once
@@ -28,7 +28,7 @@ class BodyController {
 /// vertical: P_z = Kd_z (sqrt(2 g h) - v_z) (Kp_z multiplies the height error
 /// relative to the leg length, zero at touchdown). Angular: H = Kp ∘ e + Kd ∘ (0 - w)
 /// with e the attitude error in the body frame: the rotation vector of q^-1 q_d
-/// (exact), or theta_d - theta (small-angle formulation, seed A.1).
+/// (exact), or theta_d - theta (small-angle formulation, Ridgely 2001, App. A.1).
 class PdBodyController final : public BodyController {
  public:
   /// stance_duration [s]: the pulse duration the pulse-aware hop law plans for (0: impulses).

@@ -1,5 +1,5 @@
 // The measured state of the body that controllers see (assumed perfectly
-// measured, seed 2.4.1). Every model, reduced or pseudo-rigid, produces it.
+// measured, Ridgely 2001, §2.4.1). Every model, reduced or pseudo-rigid, produces it.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,7 +1,7 @@
 // The bottom layer of the control hierarchy: each leg controller delivers its
 // allocated linear impulse. In the reduced models a leg either delivers it
 // instantly (impulse model) or as a constant body-fixed force over the stance
-// (pulse model, seed 2.6).
+// (pulse model, Ridgely 2001, §2.6).
 #pragma once
 
 #include <memory>

@@ -1,6 +1,6 @@
 // Runs the three control layers at a touchdown: body controller -> impulse
 // allocation -> leg controllers, with the pulse model's gravity compensation
-// (seed 2.6.1). Shared by every model.
+// (Ridgely 2001, §2.6.1). Shared by every model.
 #pragma once
 
 #include <string>

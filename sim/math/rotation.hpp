@@ -1,7 +1,7 @@
 // Attitude representations: unit quaternions (the internal form), rotation
 // matrices and Euler angles (input/output only) for the 1-2-3 and 3-1-3 sets.
 //
-// Conventions (SPEC 1): a rotation R maps body-frame vectors to the world frame,
+// Conventions: a rotation R maps body-frame vectors to the world frame,
 // v_world = R v_body. Quaternions are Eigen::Quaterniond (w, x, y, z), unit norm.
 #pragma once
 
@@ -31,7 +31,7 @@ Quat euler_to_quat(const Vec3& angles, EulerSet set);
 /// Euler angles of a rotation matrix. a1, a3 in (-pi, pi]; a2 in [-pi/2, pi/2]
 /// for 1-2-3 and [0, pi] for 3-1-3. At gimbal lock (within 1e-12 of the
 /// singular a2) all of the rotation about the coupled axis is put into the first
-/// angle and the third is 0 (seed 3.4.5). Never NaN for a finite proper rotation
+/// angle and the third is 0 (Ridgely 2001, §3.4.5). Never NaN for a finite proper rotation
 /// (entries slightly outside [-1,1] by rounding are harmless: only atan2 of
 /// consistent pairs is used, no asin/acos). Lock test: |cos a2| (1-2-3) or
 /// |sin a2| (3-1-3) below 1e-12.

@@ -1,4 +1,4 @@
-// Attitude and angular velocity of a body from its four masses (seed 3.4.4,
+// Attitude and angular velocity of a body from its four masses (Ridgely 2001, §3.4.4,
 // 3.4.6), and the derivative of that attitude with respect to the mass
 // positions (for the analytic Jacobian).
 #pragma once

@@ -1,4 +1,4 @@
-// Bodies of four equal point masses (seed 4.2.4) and their construction from
+// Bodies of four equal point masses (Ridgely 2001, §4.2.4) and their construction from
 // a mass, a centre of mass and an inertia tensor.
 //
 // Construction: the second-moment tensor P = sum m_i r_i r_i^T of point masses

@@ -7,10 +7,10 @@ namespace pronk::pseudorigid {
 namespace {
 
 /// The spring's and the damper's derivatives (before an actuator's clamp) into out->d_dx and
-/// out->d_dv: at separation d of length l, unit e (zero below epsilon), e.v = ev.
-void law_derivatives(const Connection& c, double rest_length, const Eigen::Vector3d& d,
-                     const Eigen::Vector3d& v, double l, const Eigen::Vector3d& e, bool has_dir,
-                     double ev, ConnectionForce* out) {
+/// out->d_dv: at a separation of length l along the unit e (zero below epsilon), relative
+/// velocity v, e.v = ev.
+void law_derivatives(const Connection& c, double rest_length, const Eigen::Vector3d& v, double l,
+                     const Eigen::Vector3d& e, bool has_dir, double ev, ConnectionForce* out) {
   const Eigen::Matrix3d eye = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d eet = e * e.transpose(), perp = eye - eet;
   Eigen::Matrix3d spring_dx = Eigen::Matrix3d::Zero();
@@ -62,7 +62,7 @@ ConnectionForce connection_force(const Connection& c, double rest_length, const 
       out.zero_length = true;
     }
   }
-  if (derivatives) law_derivatives(c, rest_length, d, v, l, e, has_dir, ev, &out);
+  if (derivatives) law_derivatives(c, rest_length, v, l, e, has_dir, ev, &out);
   if (c.kind == ConnectionClass::kActuator) {
     // PD actuator: spring + damper terms form the command, clamped.
     Eigen::Vector3d cmd = spring + damper;

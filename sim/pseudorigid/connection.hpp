@@ -1,4 +1,4 @@
-// Connections between two nodes (seed 4.2.3). One connection may combine
+// Connections between two nodes (Ridgely 2001, §4.2.3). One connection may combine
 // several laws on the same pair (a compound connection):
 //   spring   F = -k (l - l0) e            (l0 = 0: F = -k d, no direction needed)
 //   damper   F = -b (e . v) e             (along the connection)

@@ -1,4 +1,4 @@
-// Energy accounting (seed 3.5.2): stored energies by class at one state, and
+// Energy accounting (Ridgely 2001, §3.5.2): stored energies by class at one state, and
 // the rates (dissipated power, actuator power) the simulator integrates with
 // Gauss-Legendre quadrature on each step's dense output. The balance
 // total + dissipated - actuator_work is constant for an exact solution.

@@ -1,4 +1,4 @@
-// Applied forces and actuators (SPEC 3): world-relative forces (fixed
+// Applied forces and actuators (Ridgely 2001, §3.2, 4.3): world-relative forces (fixed
 // direction in the world, e.g. a thrust or gravity at the CoM), body-relative
 // forces (the direction turns with the body, e.g. a leg force at a hip), and
 // the seed's impulse actuator (a force of given magnitude along a body-fixed

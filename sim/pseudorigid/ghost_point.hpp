@@ -1,4 +1,4 @@
-// Reference points and ghost points (seed 4.2.2, 4.3.3): massless points that
+// Reference points and ghost points (Ridgely 2001, §4.2.2, 4.3.3): massless points that
 // move with a body. A ghost point also transfers a force applied to it onto the
 // body's four masses so that the net force and the net moment about the CoM
 // are preserved: the minimum-norm solution x = A^T (A A^T)^-1 b of the 6x12

@@ -1,4 +1,4 @@
-// Point masses (seed 4.2.1): six states each, position and momentum.
+// Point masses (Ridgely 2001, §4.2.1): six states each, position and momentum.
 #pragma once
 
 #include <string>
@@ -8,7 +8,7 @@
 namespace pronk::pseudorigid {
 
 /// A point mass. Body masses are regular masses created by the body
-/// construction; a dummy mass (seed 4.3.2) is a light mass (dummy_ratio of its
+/// construction; a dummy mass (Ridgely 2001, §4.3.2) is a light mass (dummy_ratio of its
 /// body's mass) tied to the body's masses by stiff internal connections.
 struct Mass {
   std::string name;
@@ -19,7 +19,7 @@ struct Mass {
   int dummy_of = -1;  ///< body a dummy mass belongs to, -1 otherwise
 };
 
-/// A grounded point (attached to nothing, no states; seed 4.2.4).
+/// A grounded point (attached to nothing, no states; Ridgely 2001, §4.2.4).
 struct Anchor {
   std::string name;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< world [m]

@@ -1,4 +1,4 @@
-// The pseudo-rigid mechanism model (seed ch. 3-4, SPEC 3): point masses with
+// The pseudo-rigid mechanism model (Ridgely 2001, ch. 3-4; docs/pseudorigid.md): point masses with
 // position and momentum states, bodies made of four equal masses held by six
 // stiff internal springs, reference and ghost points that move with a body,
 // connections, constraint surfaces, forces and actuators. A Mechanism is built

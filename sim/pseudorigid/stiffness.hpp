@@ -1,4 +1,4 @@
-// Automatic stiffness selection (SPEC 3.1). Internal springs approximate
+// Automatic stiffness selection (docs/pseudorigid.md). Internal springs approximate
 // rigidity and contact springs approximate hard ground: too soft and the body
 // flexes (model error), too stiff and the ODE is stiffer than it needs to be.
 // From a strain budget (allowed |l - l0| / l0 of internal springs) and a

@@ -1,4 +1,4 @@
-// Constraint surfaces (seed 4.2.5). Each constrained node is held by a stiff
+// Constraint surfaces (Ridgely 2001, §4.2.5). Each constrained node is held by a stiff
 // zero-rest-length spring (plus optional damper) to its projection on the
 // surface:
 //   plane  one-sided contact: F = -k (n.r) n - b (n.v) n while n.r < 0
@@ -6,7 +6,7 @@
 //   line   a prismatic joint:  F = -k (1 - d d^T) r - b (1 - d d^T) v
 //   point  a pivot:            F = -k r - b v
 // with r = x_node - x_surface, v the relative velocity. A grounded plane may add
-// regularised Coulomb friction (seed 2.8 feet; MuJoCo-like ground contact):
+// regularised Coulomb friction (Ridgely 2001, §2.8 feet; MuJoCo-like ground contact):
 //   F_t = -mu N v_t / sqrt(|v_t|^2 + v_s^2),  N = max(0, -k (n.r) - b (n.v)),
 // v_t = v - (n.v) n: Coulomb's law above the slip velocity v_s, viscous below it
 // (a stuck foot creeps at |v_t| ~ v_s |F_t| / (mu N)). A surface is grounded

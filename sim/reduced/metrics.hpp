@@ -1,4 +1,4 @@
-// Metrics of one run (SPEC 5.1), computed from its records: what a user or an
+// Metrics of one run (docs/studies.md), computed from its records: what a user or an
 // optimizer judges a gait by. Never NaN: quantities without data are 0 and
 // flagged by the counts.
 #pragma once

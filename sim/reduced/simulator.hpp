@@ -1,5 +1,5 @@
 // The reduced simulator: impulse and pulse Newton-Euler models of a body
-// hopping on massless legs (SPEC 2; seed 2.4-2.6, A.1). One call runs one
+// hopping on massless legs (Ridgely 2001, §2.4-2.6, App. A.1; docs/models.md). One call runs one
 // scene; the scene is const and may be shared by threads, every run owns its
 // state, event log, counters and warnings.
 #pragma once

@@ -1,6 +1,6 @@
 // Gait stability: the touchdown-to-touchdown (Poincaré) map in coordinates
 // relative to the moving setpoint, its periodic orbit (fixed point) and the
-// eigenvalues of its finite-difference linearisation (SPEC 5.1). Stable
+// eigenvalues of its finite-difference linearisation (docs/studies.md). Stable
 // running: spectral radius < 1.
 #pragma once
 

@@ -1,10 +1,10 @@
-// The robot of a scene as a pseudo-rigid mechanism (SPEC 3.2; seed 2.7-2.8):
+// The robot of a scene as a pseudo-rigid mechanism (Ridgely 2001, §2.7-2.8; docs/full_model.md):
 // the body as four masses held by six stiff springs, hips as ghost points or
-// dummy masses (seed 4.3), gravity on every mass (uniform field: the same net
+// dummy masses (Ridgely 2001, §4.3), gravity on every mass (uniform field: the same net
 // force and moment as gravity at the CoM), and per leg either nothing but a
-// force at the hip (`force` legs, seed 2.7) or a foot mass on a line through
+// force at the hip (`force` legs, Ridgely 2001, §2.7) or a foot mass on a line through
 // the hip (prismatic leg) with a leg spring and damper, on the ground plane
-// z = 0 with regularised Coulomb friction on the feet (`spring` legs, seed 2.8).
+// z = 0 with regularised Coulomb friction on the feet (`spring` legs, Ridgely 2001, §2.8).
 // The leg actuators and hip placement are run-time inputs of RobotSystem
 // (robot_system.hpp).
 #pragma once

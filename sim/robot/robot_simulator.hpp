@@ -6,10 +6,10 @@
 // actuators for the stance, places the legs at the apex when the hips rotate,
 // and restarts the solver (keeping its step) after every switch.
 //
-// Leg layer for spring legs (seed 2.8.1): the leg springs return the touchdown
+// Leg layer for spring legs (Ridgely 2001, §2.8.1): the leg springs return the touchdown
 // momentum (an elastic rebound reverses v_z), so the actuators deliver the
 // request minus that rebound, m (sqrt(2 g h) - |v_z|) vertically: negative
-// (downward) forces lower the hop, positive ones raise it (seed fig. 2.13).
+// (downward) forces lower the hop, positive ones raise it (Ridgely 2001, fig. 2.13).
 #pragma once
 
 #include <string>

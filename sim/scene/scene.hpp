@@ -67,6 +67,8 @@ struct Controller {
   double setpoint_yaw = 0.0;              ///< desired heading [rad]
   /// Banking (legged only): desired roll = -clamp(kp e_y + kd e_vy, ±max_roll),
   /// world y errors expressed in the heading frame.
+  /// Off in a scene built in code; the loader turns it on for legged robots unless the
+  /// scene says otherwise, with gains scaled to the robot (sim/scene/robot_scaling.hpp).
   bool bank_enabled = false;
   double bank_kp = 0.0;         ///< [rad/m]
   double bank_kd = 0.0;         ///< [rad s/m]
@@ -75,29 +77,34 @@ struct Controller {
   Gait gait = Gait::kPronk;
   std::vector<std::vector<int>> gait_groups;  ///< leg index groups for kAlternate
   /// Hop-height setpoint changes (time [s], new hop height [m]), sorted by time
-  /// (seed fig. 2.13). Used by the pseudo-rigid model; the reduced models ignore it.
+  /// (Ridgely 2001, fig. 2.13). Used by the pseudo-rigid model; the reduced models ignore it.
   std::vector<std::pair<double, double>> hop_height_changes;
 };
 
-/// Pulse model settings (seed 2.6).
+/// Pulse model settings (Ridgely 2001, §2.6).
 enum class PulseMode { kMaxForce, kDuration };
 struct Pulse {
   PulseMode mode = PulseMode::kMaxForce;
   double max_force = 60.0;           ///< per-leg force limit in max_force mode [N]
   double duration = 0.05;            ///< stance duration T in duration mode [s]
-  bool gravity_compensation = true;  ///< add m g T to the vertical impulse (seed 2.6.1)
+  bool gravity_compensation = true;  ///< add m g T to the vertical impulse (Ridgely 2001, §2.6.1)
 };
 
-/// Settings only the pseudo-rigid model uses (SPEC 3.2; seed 2.7-2.8). The
+/// Settings only the pseudo-rigid model uses (Ridgely 2001, §2.7-2.8; docs/full_model.md). The
 /// reduced models accept and ignore them. The ground is the plane z = 0, as
 /// in the reduced models (touchdown when the CoM falls through legs.length).
+/// The defaults are those of a running robot (spring legs, hip placement, level feet,
+/// friction, the energy thrust and the trims, as pr_running and study 3 run); the loader
+/// derives the leg stiffness, the stance attitude gains and the contact damping from the
+/// robot (sim/scene/robot_scaling.hpp), so their numbers here stand only for scenes built
+/// in code.
 struct PseudoRigid {
   /// Hips: ghost points (forces transferred to the four body masses) or dummy
-  /// masses tied to them (seed 4.3).
+  /// masses tied to them (Ridgely 2001, §4.3).
   enum class Hips { kGhost, kDummy };
   /// Legs: `force` = leg forces act at the hips only, no leg or foot is modelled
-  /// (seed 2.7); `spring` = a foot mass on a line through the hip (prismatic
-  /// leg) with a leg spring, damper and actuator in parallel (seed 2.8).
+  /// (Ridgely 2001, §2.7); `spring` = a foot mass on a line through the hip (prismatic
+  /// leg) with a leg spring, damper and actuator in parallel (Ridgely 2001, §2.8).
   enum class Legs { kForce, kSpring };
   /// Body: four masses held by six internal springs (the default, the body's flexibility
   /// resolved), or one rigid body with the same mass and inertia (sim/pseudorigid/rigid_body.hpp;
@@ -121,16 +128,16 @@ struct PseudoRigid {
   /// Leg actuator force limit [N]; 0 = unlimited. A saturated pulse delivers less
   /// than requested unless impulse_feedback keeps the actuator on.
   double actuator_max_force = 0.0;
-  /// Leg controllers close the loop on delivered impulse (seed 5.4): each actuator
+  /// Leg controllers close the loop on delivered impulse (Ridgely 2001, §5.4): each actuator
   /// stays on until the impulse it delivered reaches its allocation.
   bool impulse_feedback = false;
-  /// false: passive legs, the controller never acts (drop tests, seed fig. 2.11).
+  /// false: passive legs, the controller never acts (drop tests, Ridgely 2001, fig. 2.11).
   bool actuators = true;
-  double friction = 0.0;        ///< Coulomb coefficient mu [-]; 0 = frictionless feet
+  double friction = 1.0;        ///< Coulomb coefficient mu [-]; 0 = frictionless feet
   double slip_velocity = 1e-3;  ///< regularisation speed of the friction law [m/s]
   /// Hip actuators place each leg at the flight apex along the impulse the
   /// controller will ask it for at the predicted touchdown (running).
-  bool hip_rotation = false;
+  bool hip_rotation = true;
   double max_leg_angle = 0.5;  ///< hip placement limit from body -z [rad]
   /// Stance attitude feedback (running): while feet are on the ground, the grounded
   /// legs' actuators add forces with zero net push that give the body a moment
@@ -147,13 +154,13 @@ struct PseudoRigid {
   /// rest length is set (leg-length actuator, within +-25 % of nominal) so that all
   /// feet reach the ground together at the predicted touchdown attitude; the energy
   /// change is booked as hip work.
-  bool level_feet = false;
+  bool level_feet = true;
   /// Hop-height feedback (spring legs): after each flight apex the vertical takeoff
   /// speed asked of the legs changes by gain x (sqrt(2 g h) - sqrt(2 g h_apex)), h_apex
   /// the apex just measured above the leg length, so the losses in leg and foot
   /// dampers that the elastic-rebound law does not model are made up stride by
   /// stride (1 = dead-beat for a constant loss). 0 = off [-].
-  double hop_trim_gain = 0.0;
+  double hop_trim_gain = 0.5;
   /// Anti-windup of that feedback: the extra takeoff speed asked stays within
   /// [-1, hop_trim_max] x sqrt(2 g h). Legs whose dampers take much of the stance
   /// energy need more than one sqrt(2 g h) [-].
@@ -172,14 +179,14 @@ struct PseudoRigid {
   /// touchdowns so far (within +-0.5 m), so a steady force bias the body controller's PD
   /// would balance with a standing error (the full model's leaning legs under a moving
   /// setpoint) is learnt away; 0 = off [-].
-  double position_trim_gain = 0.0;
+  double position_trim_gain = 0.3;
   /// Attitude feedback's integral action, per stride: at each touchdown the controller's
   /// measured roll and pitch are offset by the running sum of gain x (roll, pitch) over the
   /// touchdowns so far (within +-0.2 rad), so a steady moment bias (the full model's hip
   /// placement and stance feedback under a moving setpoint) that the body controller's PD
   /// would balance with a standing tilt is learnt away; 0 = off [-].
-  double attitude_trim_gain = 0.0;
-  Thrust thrust = Thrust::kImpulse;
+  double attitude_trim_gain = 1.0;
+  Thrust thrust = Thrust::kEnergy;
   /// Energy blow-up: a run whose energy balance drifts by more than this times the run's
   /// energy scale ends diverged. The mechanisms' setting (pseudorigid::SimulationOptions::
   /// energy_blowup_factor), with its default [-].

@@ -1,9 +1,9 @@
-// End-to-end test of `pronk bench --quick` (SPEC 7): the JSON it writes is
+// End-to-end test of `pronk bench --quick` (docs/performance.md): the JSON it writes is
 // complete and finite, and its numbers agree with independent references —
 // the satellite's analytic precession, the known orders of the fixed-step
 // methods, the energy balance of the quad hopper drop, and, when the
 // CVODE peer is built, an independent integrator of the same right-hand side.
-// No timing assertions: timing claims are benchmarks, not tests (SPEC 9).
+// No timing assertions: timing claims are benchmarks, not tests.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -148,7 +148,9 @@ TEST_CASE("pronk bench --quick writes complete, finite results that match the re
     CHECK(fastest["omega_final"].get<double>() <= 1e-5);
   }
 
-  SECTION("satellite: Euler and RK2 beyond their stability limit end diverged (SPEC case 8)") {
+  SECTION(
+      "satellite: Euler and RK2 beyond their stability limit end diverged (Ridgely 2001, fig. "
+      "3.4)") {
     for (const std::string s : {"euler", "rk2"}) {
       const auto pts = points(doc, "satellite", s);
       REQUIRE_FALSE(pts.empty());

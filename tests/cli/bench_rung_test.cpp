@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "app/bench_suite.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 TEST_CASE("fidelity ladder: the full-model rungs run the full model, not the pulse model",
           "[cli][bench][heavy]") {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -83,6 +84,13 @@ inline Run pronk(const TempDir& dir, const std::vector<std::string>& args) {
   r.out = slurp(dir / ".stdout");
   r.err = slurp(dir / ".stderr");
   return r;
+}
+
+/// Bad input: exit 2 and exactly one line, "pronk: error: " followed by `starts`.
+inline void check_bad_input(const Run& r, const std::string& starts) {
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Matchers::StartsWith("pronk: error: " + starts));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 }
 
 }  // namespace cli_support

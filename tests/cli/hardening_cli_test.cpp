@@ -23,13 +23,6 @@ using namespace cli_support;  // NOLINT(google-build-using-namespace): test help
 
 const std::string kStudies = std::string(PRONK_SOURCE_DIR) + "/studies/";
 
-/// Exactly one line, the bad-input line of `file`.
-void check_bad_input(const Run& r, const std::string& starts) {
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, StartsWith("pronk: error: " + starts));
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-}
-
 }  // namespace
 
 TEST_CASE("100000 levels of nesting are bad input for every command, not a stack overflow",

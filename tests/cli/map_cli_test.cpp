@@ -109,7 +109,8 @@ TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
   Dir d;
   json doc = pronk::test::tiny_map_document(1, 1, 6.0);
   doc["models"] = {"pulse", "pseudo_rigid"};
-  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6})");
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6, )"
+                                   R"("position_trim_gain": 0, "attitude_trim_gain": 0})");
   doc["axes"] = {{{"kind", "duty_cycle"}, {"values", {0.1}}}};
   doc["stability"] = false;
   { std::ofstream(d.path + "/s.json") << doc.dump(); }

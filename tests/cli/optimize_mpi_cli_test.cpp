@@ -70,10 +70,12 @@ TEST_CASE("mpirun -np 2 pronk optimize writes the threaded run's journal", "[cli
   // The design's numbers too (its run record names the workers, which differ).
   const json a = json::parse(cli_support::slurp(d / "threads/design.json"));
   const json b = json::parse(cli_support::slurp(d / "mpi/design.json"));
-  for (const char* key : {"unit", "parameters", "cost", "metrics", "constraints"}) {
+  for (const char* key : {"unit", "parameters", "cost", "metrics", "constraints", "trials"}) {
     INFO(key);
     CHECK(a.at(key) == b.at(key));
   }
+  // The perturbation run's evaluations went over the ranks too: the same tolerances.
+  CHECK(a.at("reproduction").at("tolerance") == b.at("reproduction").at("tolerance"));
 
   // --resume under MPI replays the finished journal and rewrites nothing.
   const std::string before = cli_support::slurp(d / "mpi/journal.jsonl");

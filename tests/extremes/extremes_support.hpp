@@ -1,4 +1,4 @@
-// Shared helpers of the extreme-case tests (SPEC 7, issue 7 "the extremes"): an
+// Shared helpers of the extreme-case tests (docs/models.md, issue 7 "the extremes"): an
 // independent rigid-body reference (Euler's equations with a quaternion,
 // integrated tightly) and checks that every number a run reports is finite.
 #pragma once

@@ -1,4 +1,4 @@
-// The event-aware integration driver far from t = 0 (SPEC 4): events located on
+// The event-aware integration driver far from t = 0 (docs/solvers.md): events located on
 // the dense output to tolerance even where the spacing of doubles exceeds a
 // fraction of event_tol (t > ~256 s at event_tol = 1e-13 s).
 #include <cmath>

@@ -1,4 +1,4 @@
-// The pseudo-rigid model at its extremes (SPEC 7): each case ends accurate
+// The pseudo-rigid model at its extremes (docs/models.md): each case ends accurate
 // (against an analytic solution or a conservation law) or with a diagnostic the
 // run reports (status and reason, or a warning with the numbers); never NaN,
 // never an unbounded run.
@@ -8,9 +8,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/mechanism_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/write/mechanism_output.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/simulator.hpp"
@@ -72,7 +72,7 @@ Vector3d angular_momentum(const Mechanism& m, const Eigen::VectorXd& y) {
   return l;
 }
 
-/// Satellite (SPEC 10 case 10) world angular-velocity error at the last sample,
+/// Satellite (Ridgely 2001, §4.4.1) world angular-velocity error at the last sample,
 /// relative to |w0|, against the analytic steady precession.
 double satellite_error(const Mechanism& m, const RunSummary& r) {
   MechanismSystem sys(m);
@@ -244,8 +244,8 @@ TEST_CASE("extreme: pseudo-rigid tumbling through 90 deg of pitch and beyond",
 
 TEST_CASE("extreme: explicit solvers past their stability limit are reported as diverged",
           "[extremes][pseudorigid]") {
-  // Seed case 8 scene (1 kg masses, 1e6 N/m): omega_int ~ 2000 rad/s. Explicit Euler and
-  // RK2 are unstable on undamped oscillation at any step (they only take longer at small
+  // Case 8 scene (Ridgely 2001, fig. 3.4) (1 kg masses, 1e6 N/m): omega_int ~ 2000 rad/s. Explicit
+  // Euler and RK2 are unstable on undamped oscillation at any step (they only take longer at small
   // steps); RK4 is stable below h omega = 2.8.
   const std::string path =
       std::string(PRONK_SOURCE_DIR) + "/studies/mechanisms/explicit_instability.json";

@@ -1,4 +1,4 @@
-// The reduced (impulse and pulse) models at their extremes (SPEC 7): each case
+// The reduced (impulse and pulse) models at their extremes (docs/models.md): each case
 // ends accurate (against conservation laws, an exact scaling law or the
 // controller's own targets) or with a status, reason or warning the run
 // reports; never NaN, never an unbounded run.
@@ -8,8 +8,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/run_output.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/write/run_output.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"
@@ -61,8 +61,8 @@ TEST_CASE("extreme: duty cycle 1 %..90 % in the pulse model completes or falls w
           "[extremes][reduced]") {
   // Stance duration T for a nominal duty d: T = d / (1 - d) x the ballistic flight time.
   // The pulse-aware hop law (legged_pulse_duty50) holds the apex exactly while the stance
-  // fits above the ground; the seed's law (case 3) loses the gait above ~30 % (seed 2.6.1).
-  // At 70-90 % a stance long enough sinks the CoM through the ground: "fell", with when.
+  // fits above the ground; the seed's law (case 3) loses the gait above ~30 % (Ridgely 2001,
+  // §2.6.1). At 70-90 % a stance long enough sinks the CoM through the ground: "fell", with when.
   const double flight = 2.0 * std::sqrt(2.0 * 9.81 * 0.2) / 9.81;  // [s]
   for (double duty : {0.01, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.7, 0.9}) {
     const double t_stance = duty / (1.0 - duty) * flight;

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 using nlohmann::json;
 namespace pr = pronk::pseudorigid;

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/page/csv_table.hpp"
-#include "sim/io/page/html_page.hpp"
+#include "io/load/input_error.hpp"
+#include "io/page/csv_table.hpp"
+#include "io/page/html_page.hpp"
 
 using Catch::Matchers::Contains;
 using namespace pronk::io;

@@ -1,7 +1,7 @@
-// Tests of sim/io/run_output.hpp and sim/io/atomic_file.hpp: non-finite numbers
+// Tests of io/write/run_output.hpp and io/write/atomic_file.hpp: non-finite numbers
 // never reach a JSON output, atomic writes replace files and leave no
 // temporaries, and the CSV outputs are rectangular with exact values.
-#include "sim/io/run_output.hpp"
+#include "io/write/run_output.hpp"
 
 #include <unistd.h>
 
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/atomic_file.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
 
 using Catch::Matchers::Contains;

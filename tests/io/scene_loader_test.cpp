@@ -1,7 +1,7 @@
-// Tests of sim/io/scene_loader.hpp: the shipped scenes load, the resolved scene
+// Tests of io/load/scene_loader.hpp: the shipped scenes load, the resolved scene
 // round-trips exactly, every class of bad input is an io::InputError naming the
 // JSON Pointer, what was expected and what was found, and --set overrides.
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 #include <unistd.h>
 
@@ -323,8 +323,10 @@ TEST_CASE("stance attitude feedback settings parse and round-trip", "[io][scene]
   CHECK(r["max_moment"] == 1.5);
   doc["pseudo_rigid"]["stance_attitude"] = {{"kd", {-1, 1}}};
   CHECK_THROWS_AS(io::parse_scene(doc, "pr.json"), InputError);
-  doc["pseudo_rigid"].erase("stance_attitude");
+  doc["pseudo_rigid"]["stance_attitude"] = json::object();  // given, but no gains: off
   CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
+  doc["pseudo_rigid"].erase("stance_attitude");  // left out: the robot-scaled default, on
+  CHECK(io::parse_scene(doc, "pr.json").pseudo_rigid.stance_feedback());
 }
 
 TEST_CASE("level feet setting parses, round-trips and names its pointer", "[io][scene]") {
@@ -335,7 +337,7 @@ TEST_CASE("level feet setting parses, round-trips and names its pointer", "[io][
   CHECK_FALSE(s.pseudo_rigid.level_feet);
   CHECK(io::scene_to_json(s)["pseudo_rigid"]["level_feet"] == false);
   doc["pseudo_rigid"].erase("level_feet");
-  CHECK_FALSE(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // default off
+  CHECK(io::parse_scene(doc, "pr.json").pseudo_rigid.level_feet);  // default on (running)
   doc["pseudo_rigid"]["level_feet"] = 1;
   check_error(parse_error(doc), "/pseudo_rigid/level_feet", "true or false", "number 1");
 }
@@ -455,11 +457,13 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     check_error(parse_error(doc), "/simulation/solver/h_min", "valid solver options",
                 "must be < h_max");
   }
-  SECTION("empty name and a name with '/'") {
+  SECTION("a name that is not a plain directory name") {
     doc["name"] = "";
-    check_error(parse_error(doc), "/name", "a non-empty name without '/'", "\"\"");
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "an empty name");
     doc["name"] = "a/b";
-    check_error(parse_error(doc), "/name", "a non-empty name without '/'", "\"a/b\"");
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "\"a/b\"");
+    doc["name"] = "..";
+    check_error(parse_error(doc), "/name", "a name usable as a directory name", "\"..\"");
   }
 }
 

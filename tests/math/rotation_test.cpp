@@ -263,7 +263,7 @@ TEST_CASE("euler_rates_to_world_omega matches dR/dt R^T", "[rotation]") {
   }
 }
 
-TEST_CASE("SPEC case 10: free-satellite initial angular velocity", "[rotation]") {
+TEST_CASE("Ridgely 2001, §4.4.1: free-satellite initial angular velocity", "[rotation]") {
   // 3-1-3 angles psi = 180 deg, theta = 30 deg, phi = 0; torque-free axisymmetric
   // steady precession with Ixx = 1, Izz = 0.25: psi_dot = Izz phi_dot /
   // ((Ixx - Izz) cos theta), theta_dot = 0, phi_dot = 1 [rad/s].

@@ -14,7 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include "app/bench_suite.hpp"
-#include "sim/io/mechanism_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
 #include "sim/ode/solver.hpp"
 #include "sim/ode/sundials_jacobian.hpp"
 #include "sim/pseudorigid/simulator.hpp"

@@ -13,8 +13,8 @@
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/robot/robot_simulator.hpp"
 

@@ -116,8 +116,8 @@ TEST_CASE("pagmo: constraints become the quadratic penalty and the result says s
   // the minimum is x = y = w / (1 + 2 w), slightly infeasible: the population converges
   // there, and the result is the best feasible evaluation, near (0.5, 0.5).
   Recorder rec;
-  const auto r = run_optimizer(constrained_circle(),
-                               pagmo_options("cmaes", {{"population", 12}}, 3000), &rec);
+  const auto r =
+      run_optimizer(constrained_circle(), pagmo_options("cmaes", {{"population", 12}}, 3000), &rec);
   INFO(r.message);
   CHECK(r.constraints_as_penalty);
   CHECK(r.message.find("quadratic penalty (weight 1000)") != std::string::npos);

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "io/load/input_error.hpp"
 #include "optimize/study.hpp"
-#include "sim/io/input_error.hpp"
 #include "tests/cli/cli_support.hpp"
 
 using nlohmann::json;

@@ -11,8 +11,8 @@
 #include "optimize/journal.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 
 using namespace pronk;
 using namespace pronk::optimize;

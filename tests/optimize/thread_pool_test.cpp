@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -13,21 +14,27 @@
 using pronk::optimize::ThreadPool;
 
 TEST_CASE("parallel_for visits every index once and shares the work", "[optimize][threads]") {
+  // No sleep and no clock: with more than one thread, every item waits until a second
+  // thread has taken an item. A pool that shares the work passes whatever the scheduling;
+  // one that runs every item on one thread leaves the first item waiting until the 60 s
+  // safety limit, and the check below fails.
   for (int threads : {1, 2, 4}) {
     ThreadPool pool(threads);
     CHECK(pool.threads() == threads);
     for (int round = 0; round < 3; ++round) {
       std::vector<std::atomic<int>> hits(50);
       std::mutex m;
+      std::condition_variable second_thread;
       std::set<std::thread::id> ids;
       pool.parallel_for(50, [&](long i) {
         hits[static_cast<size_t>(i)]++;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        std::lock_guard<std::mutex> lock(m);
+        std::unique_lock<std::mutex> lock(m);
         ids.insert(std::this_thread::get_id());
+        second_thread.notify_all();
+        if (threads > 1)
+          second_thread.wait_for(lock, std::chrono::seconds(60), [&] { return ids.size() >= 2; });
       });
       for (auto& h : hits) CHECK(h.load() == 1);
-      // Items sleep, so the workers get a share even on a loaded machine.
       if (threads > 1)
         CHECK(ids.size() >= 2);
       else

@@ -1,4 +1,4 @@
-// Body construction (seed case 12), Kabsch attitude, least-squares angular
+// Body construction (case 12, Ridgely 2001, §4.2.4), Kabsch attitude, least-squares angular
 // velocity and ghost-point force transfer, against closed-form references; a hip ghost
 // point's static stiffness against the engine's free body.
 #include <cmath>

@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/inputs.hpp"
 #include "sim/pseudorigid/system.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"

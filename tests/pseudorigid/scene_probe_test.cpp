@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/scene_probe.hpp"
 #include "sim/pseudorigid/simulator.hpp"

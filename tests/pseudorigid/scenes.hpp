@@ -9,7 +9,7 @@
 
 namespace pronk::pseudorigid::test_scenes {
 
-/// Seed case 10: axisymmetric satellite Ixx = Iyy = 1, Izz = 0.25 kg m^2, four
+/// Case 10 (Ridgely 2001, §4.4.1): axisymmetric satellite Ixx = Iyy = 1, Izz = 0.25 kg m^2, four
 /// 1 kg masses, 3-1-3 angles (180, 30, 0) deg, spin 1 rad/s, steady precession.
 inline Mechanism satellite(double k, double t_end) {
   Mechanism m;

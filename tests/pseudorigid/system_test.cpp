@@ -11,7 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "app/bench_suite.hpp"
-#include "sim/io/mechanism_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
 #include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/simulator.hpp"

@@ -1,13 +1,13 @@
-// Validation cases of SPEC 10 on the pseudo-rigid model: free satellite (10),
-// pendulum (11), energy exchange (9) and explicit instability (8), each against
-// an independent reference (closed-form solutions, Euler's equations
-// integrated separately, the elliptic-integral period).
+// Validation cases (numbered as in docs/pseudorigid.md) on the pseudo-rigid model: free satellite
+// (10), pendulum (11), energy exchange (9) and explicit instability (8), each against an
+// independent reference (closed-form solutions, Euler's equations integrated separately, the
+// elliptic-integral period).
 #include <cmath>
 
 #include <catch2/catch.hpp>
 
-#include "sim/io/mechanism_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/mechanism_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/ode/solver.hpp"
 #include "sim/pseudorigid/simulator.hpp"
@@ -190,7 +190,7 @@ TEST_CASE("case 11: large-amplitude pendulum period vs the elliptic-integral per
 
 namespace {
 
-/// Seed case 9 / fig. 3.5, reduced to one vertical leg: a 1.5 kg body mass on a
+/// Case 9 (Ridgely 2001, fig. 3.5), reduced to one vertical leg: a 1.5 kg body mass on a
 /// 500 N/m leg spring to a 0.05 kg foot, dropped on a conservative ground plane.
 /// (The four-leg body version is the next test.)
 Mechanism drop_test(double rtol) {

@@ -1,5 +1,5 @@
 // Torque-free rigid body against conservation laws and the analytic precession
-// of an axisymmetric body (SPEC 10 case 10), and the two attitude formulations.
+// of an axisymmetric body (Ridgely 2001, §4.4.1), and the two attitude formulations.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The reduced simulator against the seed's reference cases (SPEC 10 cases 1-3)
+// The reduced simulator against the seed's reference cases (Ridgely 2001, figs. 2.3-2.7)
 // and analytic results: the hop-height law, the hand-derived linear stride map
 // of the body-only PD controller, and the pulse -> impulse limit.
 #include <catch2/catch.hpp>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
 
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/attitude.hpp"
 #include "sim/pseudorigid/builder.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"

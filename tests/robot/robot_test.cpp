@@ -1,5 +1,5 @@
 // The robot in the full (pseudo-rigid) model against the seed's reference
-// cases (SPEC 10 cases 5-7), energy balance, and the reduced models of the
+// cases (Ridgely 2001, figs. 2.9-2.13), energy balance, and the reduced models of the
 // same robot (fidelity agreement at ~15 % duty cycle).
 #include <catch2/catch.hpp>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/pseudorigid/model.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
@@ -247,7 +247,8 @@ TEST_CASE("robot pseudo_rigid energy_blowup_factor: default, validated, ends a r
   CHECK(r.run.t_end < 0.5);
 }
 
-TEST_CASE("robot hips as dummy masses (seed 4.3) hop like ghost-point hips", "[robot][heavy]") {
+TEST_CASE("robot hips as dummy masses (Ridgely 2001, §4.3) hop like ghost-point hips",
+          "[robot][heavy]") {
   const scene::Scene g = load("case5_pr_hop_height.json", {"/simulation/duration=2.5"});
   const scene::Scene d = load("case5_pr_hop_height.json",
                               {"/simulation/duration=2.5", "/pseudo_rigid/hips=\"dummy_masses\""});

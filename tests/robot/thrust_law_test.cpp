@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/robot_settings.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/robot_settings.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/robot/thrust_law.hpp"
 #include "sim/simulate.hpp"
 

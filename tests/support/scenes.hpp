@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::test {
 

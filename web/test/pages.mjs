@@ -87,13 +87,16 @@ const check = (page, what, ok, detail = '') => {
 for (const p of pages) {
   const ctx = await browser.newContext({ viewport: { width: 1400, height: 900 } });
   const page = await ctx.newPage();
+  // Generous limits: they only catch a page that never becomes ready, and a loaded machine
+  // (software WebGL on 2 busy cores) must not fail the test by being slow.
+  page.setDefaultTimeout(180000);
   const errors = [], requests = [];
   const url = pathToFileURL(path.join(work, p.file)).href;
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
   page.on('request', (r) => { if (r.url() !== url) requests.push(r.url()); });
   await page.goto(url);
-  await page.waitForFunction(() => window.pronkTest !== undefined, null, { timeout: 20000 });
+  await page.waitForFunction(() => window.pronkTest !== undefined);
   const size = fs.statSync(path.join(work, p.file)).size;
   const hasScene = await page.evaluate(() => typeof window.pronkTest.tracked === 'function');
   if (p.name !== 'map' || hasScene) {

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "optimize/scenario.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "io/load/scene_loader.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/simulator.hpp"
 #include "sim/reduced/stride_map.hpp"
@@ -201,7 +201,8 @@ TEST_CASE("a pseudo-rigid map trial agrees with the pulse model's verdict at low
   // model and at 15 in the full model: too late to hold 3 strides; a borderline verdict).
   nlohmann::json doc = pronk::test::tiny_map_document(1, 2, 12.0);
   doc["models"] = {"pulse", "pseudo_rigid"};
-  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6})");
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6, )"
+                                   R"("position_trim_gain": 0, "attitude_trim_gain": 0})");
   doc["axes"] = {{{"kind", "duty_cycle"}, {"values", {0.12}}}};
   const m::MapStudy st = m::parse_map_study(doc, "t.json", ".");
   const m::CellResult c = m::compute_cell(st, 0);

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "optimize/map/map_output.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 namespace m = pronk::optimize::map;
@@ -122,13 +122,14 @@ TEST_CASE("a stop request ends the map with the journal kept", "[map][journal]")
   CHECK(bad.validate().find("threads") != std::string::npos);
 }
 
-// Seed 2.6.1 with the shipped study: the seed's controller and gains, impulse vs
+// Ridgely 2001, §2.6.1, with the shipped study: the seed's controller and gains, impulse vs
 // pulse model, duty 10-50 % in steps of 1 %. Measured threshold (docs/maps.md): in the
 // rows with no and with 5 deg extra initial tilt the impulse model stabilizes
 // every trial; no trial is judged differently by the two models up to 27 %
 // duty, and every cell from 29 % on has disagreements (first at 29 % and 28 %).
 // Larger extra tilts lower it (18 % at 20 deg); below 18 % no row disagrees.
-TEST_CASE("seed 2.6.1: no impulse/pulse disagreement below ~30 % duty, some above", "[map][seed]") {
+TEST_CASE("Ridgely 2001, §2.6.1: no impulse/pulse disagreement below ~30 % duty, some above",
+          "[map][seed]") {
   TempDir d;
   const m::MapStudy st =
       m::load_map_study(std::string(PRONK_SOURCE_DIR) + "/studies/map_seed_duty.json");

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "optimize/map/map_engine.hpp"
-#include "sim/io/input_error.hpp"
+#include "io/load/input_error.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 using nlohmann::json;
@@ -144,7 +144,8 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
 TEST_CASE("a map study may run the robot in the full model (pseudo_rigid)", "[map][input]") {
   json doc = pronk::test::tiny_map_document();
   doc["models"] = {"pulse", "pseudo_rigid"};
-  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6})");
+  doc["scene_overrides"].push_back(R"(/pseudo_rigid={"legs": "force", "internal_stiffness": 1e6, )"
+                                   R"("position_trim_gain": 0, "attitude_trim_gain": 0})");
   const m::MapStudy st = m::parse_map_study(doc, "s.json", ".");
   REQUIRE(st.models.size() == 2);
   CHECK(st.models[0] == pronk::scene::ModelKind::kPulse);

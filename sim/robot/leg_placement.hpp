@@ -1,0 +1,39 @@
+// Leg placement in flight: the leg directions for the predicted touchdown (legs parallel to the
+// impulse, or free stance hips put by the neutral-point rule).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sim/control/stance_planner.hpp"
+
+namespace pronk::robot::detail {
+
+using Eigen::Vector3d;
+
+/// Leg placement for the predicted touchdown: every leg parallel to the net linear
+/// impulse the legs must deliver (body frame, no body-y part), within max_angle of
+/// -z, so the spring rebound pushes where the impulse must go without adding a
+/// moment of its own; the moments are left to the actuators. Unit directions hip -> foot.
+std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t legs,
+                                     double max_angle);
+
+/// Leg placement for free stance hips (world frame, unit hip -> foot): the leg,
+/// a strut from hip to foot during the stance, pushes along its mean direction,
+/// so the foot is put where the mean foot -> hip line over the stance is parallel
+/// to the net impulse the ground must give, P = P_legs + m g T_s (world [N s]):
+/// half the stance's horizontal travel ahead of that, v T_s / 2 (Raibert's
+/// neutral point, corrected by the impulse's tilt). v: horizontal CoM velocity
+/// at touchdown [m/s]; stance: expected stance duration T_s [s]; leg: leg length
+/// [m]; max_angle: limit from the vertical [rad].
+/// held_roll: with the stance roll held (stance attitude feedback) the body moves
+/// over its gripped feet only along the legs in the lateral plane (ab/adduction is
+/// held too), so the lateral velocity across the legs is lost at touchdown and the
+/// takeoff velocity follows the legs: the leg is put along the desired takeoff
+/// velocity v_takeoff in y instead (no neutral point).
+Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
+                            double max_angle, bool held_roll, const Vector3d& v_takeoff);
+
+}  // namespace pronk::robot::detail
