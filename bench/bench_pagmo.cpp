@@ -3,11 +3,15 @@
 // for 8 populations (256 evaluations), interleaved repeats after a warm-up, medians and
 // the speed-up, whether both thread counts found the same best cost (they must: the
 // evaluations are placed by index), and the load average while it ran (the machine may
-// be shared). Prints one JSON object. Usage: bench_pagmo [repeats] [algorithm]
+// be shared). Beside it, the same 256 points evaluated as 8 batches of 32 straight by the
+// Evaluator (no pagmo): the ceiling the machine gives at that moment; and each run's
+// process CPU time over its wall time, the cores it really had (a 2-thread run that got
+// one core shows 1.0). Prints one JSON object. Usage: bench_pagmo [repeats] [algorithm]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -32,6 +36,32 @@ double load_average() {
   return one;
 }
 
+/// CPU seconds of this process, all threads.
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// Wall and CPU seconds of f().
+template <class F>
+std::pair<double, double> timed(F&& f) {
+  const double c0 = cpu_seconds();
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return {wall, cpu_seconds() - c0};
+}
+
+/// The points a run evaluated, in order.
+struct Points final : EvaluationObserver {
+  std::vector<std::vector<double>> xs;
+  void on_evaluation(long, const std::vector<double>& x, const ProblemEvaluation&,
+                     const char*) override {
+    xs.push_back(x);
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -44,26 +74,38 @@ int main(int argc, char** argv) {
                  {"/optimizer/algorithm=" + algorithm,
                   "/optimizer/options={\"population\": " + std::to_string(population) + "}",
                   "/optimizer/max_evaluations=" + std::to_string(population * populations)});
-  auto run = [&](int threads) {
+  // One pagmo run; and the same points as batches of a population straight by the Evaluator.
+  auto run = [&](int threads, OptimizerResult* r, Points* seen) {
     EvaluatorConfig cfg = st.evaluator;
     cfg.threads = threads;
     const Evaluator ev(cfg);
-    const auto t0 = std::chrono::steady_clock::now();
-    const OptimizerResult r = run_optimizer(ev, st.optimizer);
-    return std::make_pair(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), r);
+    return timed([&] { *r = run_optimizer(ev, st.optimizer, seen); });
   };
-  (void)run(2);  // warm-up (page faults, caches, thread start-up)
-  const double load_before = load_average();
-  std::vector<double> t1, t2;
+  auto batches = [&](int threads, const std::vector<std::vector<double>>& xs) {
+    EvaluatorConfig cfg = st.evaluator;
+    cfg.threads = threads;
+    const Evaluator ev(cfg);
+    return timed([&] {
+      for (std::size_t i = 0; i < xs.size(); i += population)
+        (void)ev.evaluate_batch(
+            {xs.begin() + static_cast<long>(i),
+             xs.begin() + static_cast<long>(std::min(xs.size(), i + population))});
+    });
+  };
   OptimizerResult r1, r2;
+  Points points;
+  (void)run(2, &r2, &points);  // warm-up (page faults, caches, thread start-up); the points
+  const double load_before = load_average();
+  std::vector<double> t1, t2, c1, c2, e1, e2;
   for (int k = 0; k < repeats; ++k) {
-    auto [a, ra] = run(1);
-    auto [b, rb] = run(2);
+    const auto [a, ca] = run(1, &r1, nullptr);
+    const auto [b, cb] = run(2, &r2, nullptr);
     t1.push_back(a);
     t2.push_back(b);
-    r1 = ra;
-    r2 = rb;
+    c1.push_back(ca / a);
+    c2.push_back(cb / b);
+    e1.push_back(batches(1, points.xs).first);
+    e2.push_back(batches(2, points.xs).first);
   }
   const nlohmann::json out = {
       {"benchmark", "pagmo_population_batch"},
@@ -77,6 +119,11 @@ int main(int argc, char** argv) {
       {"speedup_2_threads", median(t1) / median(t2)},
       {"wall_times_1_thread_s", t1},
       {"wall_times_2_threads_s", t2},
+      {"cores_used_1_thread_median", median(c1)},
+      {"cores_used_2_threads_median", median(c2)},
+      {"evaluator_only_1_thread_median_s", median(e1)},
+      {"evaluator_only_2_threads_median_s", median(e2)},
+      {"evaluator_only_speedup_2_threads", median(e1) / median(e2)},
       {"same_best_cost", r1.best_cost == r2.best_cost && r1.best_x == r2.best_x},
       {"best_cost", r1.best_cost},
       {"repeats", repeats},

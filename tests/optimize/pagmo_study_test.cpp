@@ -5,8 +5,10 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/load/input_error.hpp"
@@ -76,14 +78,27 @@ TEST_CASE("pagmo studies: a bad optimizer section names its pointer", "[optimize
   CHECK_THAT(load_error({"/optimizer/options=[]"}, &pointer),
              Catch::Contains("/optimizer/options: expected an object of pagmo options"));
 
-  // The command line: exit 2, one line naming the study file and the pointer.
+  // The command line: exit 2, one line naming the study file, the pointer, what was expected
+  // and what was found, for an unknown algorithm, an unknown option and a small population.
   TempDir d("pagmo_study");
-  const Run r =
-      cli_support::pronk(d, {"optimize", kStudy, "--set", "/optimizer/options/population=3"});
-  CHECK(r.code == 2);
-  CHECK(r.err == "pronk: error: " + kStudy +
-                     ": /optimizer/options/population: expected a population of at least 5 "
-                     "(pagmo cmaes needs at least 5 individuals), found 3\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"/optimizer/algorithm=\"nsga9\"",
+       "/optimizer/algorithm: expected a pagmo algorithm pronk offers (cmaes, xnes, de, sade, "
+       "de1220, pso_gen), found \"nsga9\""},
+      {"/optimizer/options/sigma=0.2",
+       "/optimizer/options/sigma: expected an option of pagmo cmaes (population, generations, "
+       "ftol, xtol, sigma0, cc, cs, c1, cmu), found an unknown option"},
+      {"/optimizer/options/population=3",
+       "/optimizer/options/population: expected a population of at least 5 (pagmo cmaes needs "
+       "at least 5 individuals), found 3"},
+  };
+  for (const auto& [set, message] : cases) {
+    const Run r = cli_support::pronk(d, {"optimize", kStudy, "--set", set, "--out", d / "out"});
+    INFO(set);
+    CHECK(r.code == 2);
+    CHECK(r.err == "pronk: error: " + kStudy + ": " + message + "\n");
+  }
+  CHECK_FALSE(std::filesystem::exists(d / "out"));
 }
 
 TEST_CASE("pagmo studies: 1 and 2 threads write the same journal; kill -9 and --resume too",
