@@ -2,7 +2,8 @@
 // work-precision of every solver (and internal stiffness), the fidelity ladder,
 // the quad hopper drop, and the optional peers (SUNDIALS CVODE, MuJoCo), which
 // are separate executables built only when their libraries are found: `pronk
-// bench` runs the ones that sit beside it and merges their JSON into bench.json.
+// bench` runs the ones that sit beside it and merges their JSON into bench.json. The groups
+// live in app/bench/ (suite.hpp), one file each.
 #pragma once
 
 #include <string>
@@ -18,7 +19,7 @@ struct BenchArgs {
   bool no_peers = false;    ///< skip the peer executables even when built
   std::string studies_dir;  ///< the shipped studies/ directory; default: the source tree's
   bool quiet = false;
-  /// "" runs everything; "auto" only the check of "method": "auto" (bench_auto.hpp), into
+  /// "" runs everything; "auto" only the check of "method": "auto" (app/bench/auto_check.hpp), into
   /// DIR/auto_check.json (bench.json untouched).
   std::string only;
 };

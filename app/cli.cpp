@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/bench_command.hpp"
+#include "app/design_command.hpp"
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/reproduce_command.hpp"
@@ -52,6 +53,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* map = add_map_command(app, map_args);
   ViewArgs view_args;
   CLI::App* view = add_view_command(app, view_args);
+  DesignArgs design_args;
+  CLI::App* design = add_design_command(app, design_args);
   BenchArgs bench_args;
   CLI::App* bench = add_bench_command(app, bench_args);
   try {
@@ -77,6 +80,7 @@ int run_cli(int argc, const char* const* argv) {
     if (simulate->parsed()) return run_simulate(simulate_args);
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
+    if (design->parsed()) return run_design(design_args);
     if (map->parsed()) return run_map_command(map_args);
     if (view->parsed()) return run_view(view_args);
     if (bench->parsed()) return run_bench(bench_args);

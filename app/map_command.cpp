@@ -42,9 +42,11 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
     write_page_after(o.out_dir, quiet);
     return 0;
   }
-  std::printf("%s: %ld cells x %ld trials (%ld computed, %ld from the journal), %.1f s on %s\n",
-              st.name.c_str(), o.cells, st.trials.count, o.cells_computed, o.cells_replayed,
-              o.wall_time, workers.c_str());
+  std::printf(
+      "%s: %ld cells x %ld trials (%ld computed, %ld from the journal%s), %.1f s on %s\n",
+      st.name.c_str(), o.cells, st.trials.count, o.cells_computed, o.cells_replayed,
+      o.verified > 0 ? (", " + std::to_string(o.verified) + " records verified").c_str() : "",
+      o.wall_time, workers.c_str());
   const auto& d = o.summary["disagreement"];
   if (st.models.size() > 1) {
     std::printf("  disagreements %s vs %s: %ld trials; none up to %s = %s, first at %s\n",
@@ -78,6 +80,7 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& args) {
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores; MPI: 1 per rank)")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--resume", args.resume, "Continue from the journal in the output directory");
+  add_verify_flags(cmd, args.verify);
   cmd->add_option("--out", args.out_dir, "Output directory (default: the study's, results/<name>)");
   cmd->add_option("--set", args.overrides,
                   "Override a study value: --set /json/pointer=value (repeatable), e.g. "
@@ -91,6 +94,7 @@ int run_map_command(const MapArgs& args) {
   namespace m = optimize::map;
   m::MapRunOptions opt;
   opt.resume = args.resume;
+  opt.verify = args.verify.sample;
   opt.out_dir = args.out_dir;
   opt.stop_flag = &g_map_stop;
   g_map_stop.store(false);
@@ -104,6 +108,7 @@ int run_map_command(const MapArgs& args) {
           opt.runner = &runner;
           opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
           const int rc = run_reporting_errors([&] {
+            opt.verify_seed = verify_seed(args.verify, args.resume, args.quiet);
             std::signal(SIGINT, on_map_sigint);
             const m::MapOutcome o = m::run_map(st, opt);
             std::signal(SIGINT, SIG_DFL);
@@ -116,6 +121,7 @@ int run_map_command(const MapArgs& args) {
 #endif
   // N copies would each compute the whole map and write the same files.
   if (refuse_mpirun_without_mpi()) return 2;
+  opt.verify_seed = verify_seed(args.verify, args.resume, args.quiet);
   const m::MapStudy st = m::load_map_study(args.study_path, args.overrides);
   const unsigned hw = std::thread::hardware_concurrency();
   opt.threads = args.threads > 0 ? args.threads : (hw > 0 ? static_cast<int>(hw) : 1);

@@ -7,12 +7,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/verify_flags.hpp"
+
 namespace pronk::app {
 
 struct MapArgs {
   std::string study_path;
   int threads = 0;  ///< 0: all hardware threads (one per rank under MPI)
   bool resume = false;
+  VerifyArgs verify;
   std::string out_dir;
   std::vector<std::string> overrides;
   bool quiet = false;

@@ -52,6 +52,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--resume", args.resume, "Continue from the journal in the output directory");
+  add_verify_flags(cmd, args.verify);
   cmd->add_option("--out", args.out_dir, "Output directory (default: the study's, results/<name>)");
   cmd->add_option("--set", args.overrides,
                   "Override a study value: --set /json/pointer=value (repeatable), e.g. "
@@ -69,6 +70,8 @@ optimize::StudyRunOptions run_options(const OptimizeArgs& args, optimize::JobFar
   opt.threads = farm ? 1 : thread_count(args.threads);
   opt.farm = farm;
   opt.resume = args.resume;
+  opt.verify = args.verify.sample;
+  opt.verify_seed = verify_seed(args.verify, args.resume, args.quiet);
   opt.out_dir = args.out_dir;
   opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
   opt.stop_flag = &g_stop;
@@ -136,9 +139,13 @@ int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize:
   if (!args.quiet) {
     const std::string workers = farm ? farm->describe() : std::to_string(opt.threads) + " threads";
     std::printf("%s: %s\n", study.name.c_str(), o.result.brief_report().c_str());
-    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed), %.1f s, %s\n",
+    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed%s), %.1f s, %s\n",
                 o.initial.cost, o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",
-                o.result.evaluations, o.replayed, o.wall_time, workers.c_str());
+                o.result.evaluations, o.replayed,
+                args.verify.sample >= 0
+                    ? (", " + std::to_string(o.verified) + " of them verified").c_str()
+                    : "",
+                o.wall_time, workers.c_str());
     for (size_t i = 0; i < o.best.values.size(); ++i) {
       std::printf("  %-24s %12.6g -> %12.6g\n", study.evaluator.parameters[i].name.c_str(),
                   o.initial.values[i], o.best.values[i]);

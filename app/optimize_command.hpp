@@ -1,4 +1,5 @@
-// `pronk optimize STUDY.json [--threads N] [--resume] [--out DIR] [--set /ptr=value]...`.
+// `pronk optimize STUDY.json [--threads N] [--resume [--verify [N]]] [--out DIR] [--set
+// /ptr=value]...`.
 #pragma once
 
 #include <string>
@@ -6,12 +7,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/verify_flags.hpp"
+
 namespace pronk::app {
 
 struct OptimizeArgs {
   std::string study_path;
   int threads = 0;  ///< 0: all hardware threads
   bool resume = false;
+  VerifyArgs verify;
   std::string out_dir;
   std::vector<std::string> overrides;
   bool quiet = false;

@@ -1,7 +1,8 @@
 // libFuzzer target over the study journal reader. Each input is read twice: as
 // it is (the checksums reject almost every mutation) and with every line that is
-// a JSON object sealed with its checksum first, so the fuzzer also reaches the
-// record parsing behind the checksum check.
+// a JSON object sealed with its checksum first, chained onto the line before as
+// format 2 requires, so the fuzzer also reaches the header's format, the index
+// continuity check and the record parsing behind the checksum check.
 #include <sstream>
 
 #include "fuzz/fuzz_support.hpp"
@@ -11,10 +12,19 @@ namespace {
 
 std::string sealed_lines(const std::string& input) {
   std::istringstream in(input);
-  std::string line, out;
+  std::string line, out, previous;
+  bool first = true, chained = true;
   while (std::getline(in, line)) {
     const auto j = pronk::fuzz::document(line);
-    out += (j && j->is_object() ? pronk::optimize::sealed(*j).dump() : line);
+    if (j && j->is_object()) {
+      if (first) chained = j->contains("format");  // format 1: each line on its own
+      first = false;
+      const nlohmann::json s = pronk::optimize::sealed(*j, chained ? previous : "");
+      previous = s.at("checksum").get<std::string>();
+      out += s.dump();
+    } else {
+      out += line;
+    }
     if (!in.eof()) out += "\n";
   }
   return out;

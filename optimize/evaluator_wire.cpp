@@ -38,7 +38,10 @@ json scenario_to_wire(const Scenario& s) {
   json d = json::array();
   for (const auto& x : s.disturbances)
     d.push_back({wire_number(x.time), wire_vec3(x.linear_impulse), wire_vec3(x.angular_impulse)});
+  json plant = json::array();  // the robot's drawn numbers, exact doubles
+  for (const auto& x : s.plant) plant.push_back({x.pointer, x.relative, wire_number(x.value)});
   return {{"name", s.name},
+          {"plant", plant},
           {"position_offset", wire_vec3(s.position_offset)},
           {"velocity_kick", wire_vec3(s.velocity_kick)},
           {"tilt", wire_vec3(s.tilt)},
@@ -51,6 +54,9 @@ json scenario_to_wire(const Scenario& s) {
 Scenario scenario_from_wire(const json& j) {
   Scenario s;
   s.name = j.at("name").get<std::string>();
+  for (const auto& x : j.at("plant")) {
+    s.plant.push_back({x.at(0).get<std::string>(), x.at(1).get<bool>(), number_from_wire(x.at(2))});
+  }
   s.position_offset = vec3_from_wire(j.at("position_offset"));
   s.velocity_kick = vec3_from_wire(j.at("velocity_kick"));
   s.tilt = vec3_from_wire(j.at("tilt"));

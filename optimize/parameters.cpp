@@ -38,4 +38,17 @@ nlohmann::json bind_parameters(const nlohmann::json& scene_doc,
   return doc;
 }
 
+bool pointer_under(const std::string& pointer, const std::string& prefix) {
+  return pointer == prefix ||
+         (pointer.size() > prefix.size() && pointer.compare(0, prefix.size(), prefix) == 0 &&
+          pointer[prefix.size()] == '/');
+}
+
+const std::string* ignored_setting(const std::vector<std::string>& unused,
+                                   const std::string& pointer) {
+  for (const std::string& u : unused)
+    if (pointer_under(pointer, u)) return &u;
+  return nullptr;
+}
+
 }  // namespace pronk::optimize

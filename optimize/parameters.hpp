@@ -34,4 +34,12 @@ nlohmann::json bind_parameters(const nlohmann::json& scene_doc,
 std::vector<double> physical_values(const std::vector<Parameter>& params,
                                     const std::vector<double>& unit);
 
+/// True when `pointer` is `prefix` or lies under it ("/pulse" covers "/pulse/duration").
+bool pointer_under(const std::string& pointer, const std::string& prefix);
+
+/// The setting of `unused` (io::unused_settings: what a model ignores) that covers `pointer`,
+/// or nullptr: a number a study tunes or perturbs must be one its model uses.
+const std::string* ignored_setting(const std::vector<std::string>& unused,
+                                   const std::string& pointer);
+
 }  // namespace pronk::optimize

@@ -21,7 +21,8 @@ std::uint64_t mix_seed(std::uint64_t a, std::uint64_t b) {
 }
 
 Scenario sample_scenario(const RandomScenarios& spec, long index) {
-  SplitMix64 g(mix_seed(spec.seed, static_cast<std::uint64_t>(index)));
+  const std::uint64_t seed = mix_seed(spec.seed, static_cast<std::uint64_t>(index));
+  SplitMix64 g(seed);
   Scenario s;
   s.name = "random_" + std::to_string(index);
   auto horizontal = [&g]() {
@@ -49,6 +50,8 @@ Scenario sample_scenario(const RandomScenarios& spec, long index) {
   s.position_offset = offset * offset_dir + Eigen::Vector3d(0.0, lateral, 0.0);
   s.velocity_kick = kick * kick_dir;
   s.angular_velocity = spin * spin_dir;
+  for (size_t k = 0; k < spec.perturb.size(); ++k)
+    s.plant.push_back(draw_perturbation(spec.perturb[k], seed, static_cast<long>(k)));
   return s;
 }
 
@@ -56,8 +59,19 @@ void add_random_scenarios(const RandomScenarios& spec, ScenarioSet& set) {
   for (long i = 0; i < spec.count; ++i) set.scenarios.push_back(sample_scenario(spec, i));
 }
 
+bool perturbs_robot(const ScenarioSet& set) {
+  return std::any_of(set.scenarios.begin(), set.scenarios.end(),
+                     [](const Scenario& s) { return !s.plant.empty(); });
+}
+
+ScenarioSet with_nominal_robot(const ScenarioSet& set) {
+  ScenarioSet nominal = set;
+  for (Scenario& s : nominal.scenarios) s.plant.clear();
+  return nominal;
+}
+
 scene::Scene apply_scenario(const scene::Scene& base, const Scenario& s, const ScenarioSet& set) {
-  scene::Scene sc = base;
+  scene::Scene sc = s.plant.empty() ? base : perturbed_scene(base, s.plant);
   sc.initial.position += s.position_offset;
   sc.initial.velocity += s.velocity_kick;
   sc.initial.attitude =

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "optimize/perturbation.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::optimize {
@@ -23,6 +24,9 @@ struct Scenario {
   std::vector<scene::Disturbance> disturbances;                ///< added to the scene's
   double duration = 0.0;  ///< simulated time [s]; 0: the set's default
   long strides = 0;       ///< stop after this many strides; 0: the set's default
+  /// The robot's own numbers drawn for this scenario (the plant; the controller keeps the
+  /// nominal ones). Empty: the nominal robot.
+  std::vector<PlantDraw> plant;
 };
 
 /// Ranges of the random disturbances: a magnitude drawn uniformly in [lo, hi]
@@ -30,19 +34,29 @@ struct Scenario {
 struct RandomScenarios {
   long count = 0;
   std::uint64_t seed = 1;
-  double tilt_lo = 0, tilt_hi = 0;        ///< tilt about a random horizontal axis [rad]
-  double offset_lo = 0, offset_hi = 0;    ///< horizontal CoM offset [m]
-  double lateral_lo = 0, lateral_hi = 0;  ///< offset along y only, random sign [m]
-  double kick_lo = 0, kick_hi = 0;        ///< horizontal velocity kick [m/s]
-  double yaw_lo = 0, yaw_hi = 0;          ///< yaw error, random sign [rad]
-  double spin_lo = 0, spin_hi = 0;        ///< angular velocity, random direction [rad/s]
+  double tilt_lo = 0, tilt_hi = 0;         ///< tilt about a random horizontal axis [rad]
+  double offset_lo = 0, offset_hi = 0;     ///< horizontal CoM offset [m]
+  double lateral_lo = 0, lateral_hi = 0;   ///< offset along y only, random sign [m]
+  double kick_lo = 0, kick_hi = 0;         ///< horizontal velocity kick [m/s]
+  double yaw_lo = 0, yaw_hi = 0;           ///< yaw error, random sign [rad]
+  double spin_lo = 0, spin_hi = 0;         ///< angular velocity, random direction [rad/s]
+  std::vector<PlantPerturbation> perturb;  ///< the robot's numbers, each drawn on its own stream
 };
 
 struct ScenarioSet {
   std::vector<Scenario> scenarios;  ///< explicit ones first, then the random samples
   double duration = 5.0;            ///< default simulated time [s]
   long strides = 0;                 ///< default stride limit; 0 = none
+  /// With robot perturbations: also evaluate the set on the nominal robot, to report both
+  /// (a study's validation set; "compare_nominal").
+  bool compare_nominal = true;
 };
+
+/// True when some scenario of the set perturbs the robot.
+bool perturbs_robot(const ScenarioSet& set);
+
+/// The same scenarios on the nominal robot (the robot perturbations dropped, the starts kept).
+ScenarioSet with_nominal_robot(const ScenarioSet& set);
 
 /// Random sample number `index` of `spec` (depends only on spec.seed and index).
 Scenario sample_scenario(const RandomScenarios& spec, long index);
@@ -50,7 +64,8 @@ Scenario sample_scenario(const RandomScenarios& spec, long index);
 /// Appends spec.count samples to the set.
 void add_random_scenarios(const RandomScenarios& spec, ScenarioSet& set);
 
-/// The scene with the scenario applied.
+/// The scene with the scenario applied: the robot perturbed (its controller keeping the
+/// nominal numbers), then the start and the disturbances.
 scene::Scene apply_scenario(const scene::Scene& base, const Scenario& s, const ScenarioSet& set);
 
 /// A small counter-based generator (SplitMix64): portable, bit-identical everywhere.

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "optimize/output_lock.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
@@ -261,8 +262,21 @@ json read_design(const std::string& path) {
   try {
     return io::read_json_file(path);
   } catch (const io::InputError&) {
-    return json();  // a design.json torn by a crash: the stage runs again (its journal replays)
+    return json();  // torn by a crash: the stage runs again (its journal replays)
   }
+}
+
+// The marker a stage writes last, once every one of its files is written: a stage without
+// it (killed while writing its results, or stopped) runs again on --resume, its journal
+// replaying, and rewrites them all.
+constexpr const char* kStageComplete = "/stage_complete.json";
+
+// The finished stage's design.json when DIR holds a stage of `hash` that completed.
+json finished_stage(const std::string& dir, const std::string& hash) {
+  const json marker = read_design(dir + kStageComplete);
+  if (!marker.is_object() || marker.value("study_hash", "") != hash) return json();
+  const json done = read_design(dir + "/design.json");
+  return done.is_object() && done.value("study_hash", "") == hash ? done : json();
 }
 
 StageOutcome run_stage(const StagedStudy& st, size_t k, const std::map<std::string, double>& from,
@@ -273,17 +287,25 @@ StageOutcome run_stage(const StagedStudy& st, size_t k, const std::map<std::stri
   o.model = st.stages[k].model;
   o.out_dir = out_dir + "/stages/" + std::to_string(k + 1) + "_" + o.name;
   o.values = from;
-  const json done = opt.resume ? read_design(o.out_dir + "/design.json") : json();
-  if (done.is_object() && done.value("study_hash", "") == s.hash) {
+  // With --verify every stage's journal is checked: finished stages run (replay) again.
+  const json done = opt.resume && opt.verify < 0 ? finished_stage(o.out_dir, s.hash) : json();
+  if (!done.is_null()) {
     o.design = done;
     o.skipped = true;
   } else {
+    std::error_code ec;
+    std::filesystem::remove(o.out_dir + kStageComplete, ec);
     StudyRunOptions so = opt;
     so.out_dir = o.out_dir;
     const StudyOutcome r = run_study(s, so);
     const auto status = r.result.status;
     *stopped = status == OptimizerStatus::kStopped || status == OptimizerStatus::kFailed;
     o.design = io::read_json_file(o.out_dir + "/design.json");
+    if (!*stopped) {
+      const json marker = {
+          {"type", "pronk_stage_complete"}, {"stage", o.name}, {"study_hash", s.hash}};
+      io::write_file_atomic(o.out_dir + kStageComplete, marker.dump(2) + "\n");
+    }
   }
   for (const auto& [name, v] : o.design.at("parameters").items()) o.values[name] = v.get<double>();
   return o;
@@ -400,6 +422,8 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
   StagedOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
   io::make_directories(o.out_dir + "/stages");
+  const OutputLock lock(o.out_dir, "pronk optimize");
+  remove_stale_temporaries(o.out_dir, 0);  // each stage cleans its own directory
   std::map<std::string, double> initial;
   for (const auto& p : st.parameters) initial[p.name] = p.initial;
   for (size_t k = 0; k < st.stages.size(); ++k) {

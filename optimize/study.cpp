@@ -63,7 +63,7 @@ Scenario parse_scenario(io::JsonReader r, long index) {
   s.tilt = r.vec3_or("tilt_deg", Eigen::Vector3d::Zero()) * kDeg;
   s.angular_velocity = r.vec3_or("angular_velocity", s.angular_velocity);
   s.duration = r.number_or("duration", 0.0, 0.0, 1e6);
-  s.strides = r.integer_or("strides", 0, 0, 100000000);
+  s.strides = r.integer_or("strides", 0, 0, 10000000);  // reduced::kMaxStrides
   if (r.has("disturbances")) {
     for (io::JsonReader d : r.object_array("disturbances")) {
       scene::Disturbance dist;
@@ -80,10 +80,12 @@ Scenario parse_scenario(io::JsonReader r, long index) {
   return s;
 }
 
-// A scenario set: default duration/strides, an explicit list and/or random samples.
-void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
+// A scenario set: default duration/strides, an explicit list and/or random samples (which
+// may perturb the robot's own numbers, checked against the nominal scene).
+void parse_scenario_set(io::JsonReader s, const PerturbationContext& robot, ScenarioSet& set) {
   set.duration = s.number_or("duration", 5.0, 1e-6, 1e6);
-  set.strides = s.integer_or("strides", 0, 0, 100000000);
+  set.strides = s.integer_or("strides", 0, 0, 10000000);  // reduced::kMaxStrides
+  set.compare_nominal = s.boolean_or("compare_nominal", true);
   if (s.has("list")) {
     long i = 0;
     for (io::JsonReader one : s.object_array("list"))
@@ -102,6 +104,7 @@ void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
     range(rr, "velocity_kick", 1.0, &spec.kick_lo, &spec.kick_hi);
     range(rr, "yaw_deg", kDeg, &spec.yaw_lo, &spec.yaw_hi);
     range(rr, "angular_velocity", 1.0, &spec.spin_lo, &spec.spin_hi);
+    spec.perturb = parse_perturbations(rr, robot);
     rr.finish();
     add_random_scenarios(spec, set);
   } else {
@@ -110,13 +113,6 @@ void parse_scenario_set(io::JsonReader s, ScenarioSet& set) {
   s.finish();
   if (set.scenarios.empty())
     throw s.error("", "at least one scenario (\"list\" or \"random\")", "none");
-}
-
-// True when `pointer` is `prefix` or lies under it ("/pulse" covers "/pulse/duration").
-bool under(const std::string& pointer, const std::string& prefix) {
-  return pointer == prefix ||
-         (pointer.size() > prefix.size() && pointer.compare(0, prefix.size(), prefix) == 0 &&
-          pointer[prefix.size()] == '/');
 }
 
 // One design parameter, bound to a number of the resolved scene that its model uses.
@@ -133,13 +129,11 @@ Parameter parse_parameter(io::JsonReader& p, const json& resolved,
                   "\"" + par.pointer + "\", which names no number of a scene");
   }
   // Tuning a number the model ignores would give a flat cost surface: refuse it.
-  for (const std::string& u : unused) {
-    if (under(par.pointer, u)) {
-      throw p.error("pointer",
-                    "a setting the " + std::string(scene::to_string(model)) +
-                        " model uses (parameter \"" + par.name + "\")",
-                    "\"" + par.pointer + "\", which that model ignores (" + u + ")");
-    }
+  if (const std::string* u = ignored_setting(unused, par.pointer)) {
+    throw p.error("pointer",
+                  "a setting the " + std::string(scene::to_string(model)) +
+                      " model uses (parameter \"" + par.name + "\")",
+                  "\"" + par.pointer + "\", which that model ignores (" + *u + ")");
   }
   par.lower = p.number("lower");
   par.upper = p.number("upper");
@@ -359,10 +353,12 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   parse_study_parameters(r, scene0, resolved, &ec);
 
   // Scenarios, and the optional held-out validation set.
-  parse_scenario_set(r.object("scenarios"), ec.scenarios);
+  // Robot perturbations are checked against the scene at the parameters' starts.
+  PerturbationContext robot{&ec.scene_doc, scene0.model, io::unused_settings(scene0), scene_file};
+  parse_scenario_set(r.object("scenarios"), robot, ec.scenarios);
   if (r.has("validation")) {
     ScenarioSet v;
-    parse_scenario_set(r.object("validation"), v);
+    parse_scenario_set(r.object("validation"), robot, v);
     st.validation = v;
   } else {
     r.optional("validation");

@@ -12,13 +12,16 @@
 #include <sstream>
 
 #include "optimize/journal.hpp"
+#include "optimize/journal_check.hpp"
+#include "optimize/output_lock.hpp"
 #include "optimize/reproduction_record.hpp"
-#include "io/write/atomic_file.hpp"
+#include "optimize/study_history.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
 #include "io/write/plot.hpp"
 #include "io/write/run_output.hpp"
-#include "io/load/scene_loader.hpp"
 #include "io/write/simulation_output.hpp"
 #include "sim/simulate.hpp"
 
@@ -106,10 +109,10 @@ class StudyProblem final : public Problem {
   mutable std::mutex m_;
 };
 
-// Writes each new evaluation to the journal and timings, tracks progress.
+// Writes each new evaluation to timings.csv and the journal, tracks progress.
 class JournalObserver final : public EvaluationObserver {
  public:
-  JournalObserver(const StudyProblem& problem, JournalWriter& journal, std::FILE* timings,
+  JournalObserver(const StudyProblem& problem, JournalWriter& journal, TimingsFile& timings,
                   long recorded, std::vector<std::string> names, long max_evals, bool progress)
       : problem_(problem),
         journal_(journal),
@@ -132,12 +135,8 @@ class JournalObserver final : public EvaluationObserver {
         full.constraints = e.constraints;
         full.failure = e.failure;
       }
+      timings_.write(index, full);  // first: a kill between the two leaves a spare line
       journal_.append(journal_record(index, purpose, full, names_));
-      if (timings_) {
-        std::fprintf(timings_, "%ld,%.6f,%.6f,%ld,%ld\n", index, full.wall_time, full.binding_time,
-                     full.simulations, full.strides);
-        std::fflush(timings_);
-      }
     }
     if (progress_ && (now_s() - last_print_ > 0.2 || index + 1 >= max_evals_)) {
       last_print_ = now_s();
@@ -150,7 +149,7 @@ class JournalObserver final : public EvaluationObserver {
  private:
   const StudyProblem& problem_;
   JournalWriter& journal_;
-  std::FILE* timings_;
+  TimingsFile& timings_;
   long recorded_;
   std::vector<std::string> names_;
   long max_evals_;
@@ -159,74 +158,10 @@ class JournalObserver final : public EvaluationObserver {
   double last_print_ = 0.0;
 };
 
-// The first key at which two records differ ("" when equal).
-std::string first_difference(const json& a, const json& b) {
-  for (auto it = a.begin(); it != a.end(); ++it) {
-    if (!b.contains(it.key()) || b.at(it.key()).dump() != it.value().dump()) return it.key();
-  }
-  for (auto it = b.begin(); it != b.end(); ++it) {
-    if (!a.contains(it.key())) return it.key();
-  }
-  return "";
-}
-
-// Evaluations are deterministic: the journal's last record, evaluated again, must give the
-// same bytes, or the journal was not written by this study on this build.
-void check_last_record(const JournalContents& journal, const Evaluator& ev,
-                       const std::string& path) {
-  if (journal.records.empty()) return;
-  const JournalRecord& last = journal.records.back();
-  const json again = journal_record(last.index, last.purpose.c_str(), ev.evaluate_full(last.x),
-                                    ev.variable_names());
-  json recorded = last.line;
-  recorded.erase("checksum");
-  const std::string key = first_difference(recorded, again);
-  if (key.empty()) return;
-  auto text = [&](const json& j) {
-    const std::string d = j.contains(key) ? j.at(key).dump() : "nothing";
-    return d.size() > 80 ? d.substr(0, 77) + "..." : d;
-  };
-  throw io::InputError(path, "line " + std::to_string(last.line_number) + " /" + key,
-                       "the value its re-evaluation gives, " + text(again) +
-                           " (evaluations are deterministic; a journal edited or written by "
-                           "another build cannot be resumed)",
-                       text(recorded));
-}
-
-std::string csv_num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
 json metrics_json(const Evaluation& e) {
   json m = json::object();
   for (const auto& [k, v] : e.aggregated) m[k] = v;
   return m;
-}
-
-// Writes history.csv from the journal.
-void write_history(const std::string& dir, const JournalContents& j, const Evaluator& ev) {
-  std::string out = "index,purpose,ok,cost,feasible,best_feasible_cost";
-  for (const auto& n : ev.variable_names()) out += "," + n;
-  for (size_t c = 0; c < ev.config().constraints.size(); ++c) out += ",g" + std::to_string(c);
-  out += ",spectral_radius\n";
-  double best = INFINITY;
-  for (const auto& r : j.records) {
-    const bool feasible =
-        r.result.ok && std::all_of(r.result.constraints.begin(), r.result.constraints.end(),
-                                   [](double g) { return g <= 1e-8; });
-    if (feasible) best = std::min(best, r.result.cost);
-    out += std::to_string(r.index) + "," + r.purpose + "," + (r.result.ok ? "1" : "0") + "," +
-           csv_num(r.result.cost) + "," + (feasible ? "1" : "0") + "," +
-           (std::isfinite(best) ? csv_num(best) : std::string(""));
-    const auto values = physical_values(ev.config().parameters, r.x);
-    // Appended piecewise: `"," + std::string` trips GCC 12's false -Wrestrict (bug 105651).
-    for (double v : values) out.append(",").append(csv_num(v));
-    for (double g : r.result.constraints) out.append(",").append(csv_num(g));
-    out.append(",").append(csv_num(r.line.value("spectral_radius", 0.0))).append("\n");
-  }
-  io::write_file_atomic(dir + "/history.csv", out);
 }
 
 std::string figure_history() {
@@ -269,6 +204,22 @@ void write_design_run(const std::string& dir, const Evaluator& ev, const std::ve
   io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
 }
 
+// The tuned design on the validation starts, the nominal robot beside the perturbed ones.
+std::string validation_comparison(const StudyOutcome& o) {
+  std::ostringstream md;
+  md << "\nThe tuned design on the same " << o.validation_best.scenarios.size()
+     << " validation starts, with the nominal robot and with the robot perturbed as the set "
+        "draws it (the controller knows only the nominal numbers):\n\n| metric | nominal robot "
+        "| perturbed robot |\n|---|---|---|\n";
+  md << "| cost | " << o.validation_nominal.cost << " | " << o.validation_best.cost << " |\n";
+  for (const auto& [k, v] : o.validation_best.aggregated) {
+    const auto it = o.validation_nominal.aggregated.find(k);
+    md << "| " << k << " | " << (it != o.validation_nominal.aggregated.end() ? it->second : 0.0)
+       << " | " << v << " |\n";
+  }
+  return md.str();
+}
+
 std::string summary_markdown(const Study& st, const StudyOutcome& o) {
   std::ostringstream md;
   const auto& ev = st.evaluator;
@@ -309,11 +260,43 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
       md << "| " << k << " | " << (it != o.validation_initial.aggregated.end() ? it->second : 0.0)
          << " | " << v << " |\n";
     }
+    if (o.validation_compared) md << validation_comparison(o);
   }
   md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
      << "/design.json`), `history.csv`, `journal.jsonl`, `history.svg`, `compare.svg`, "
         "`initial/` and `tuned/` (first scenario, simulated).\n";
   return md.str();
+}
+
+json journal_header(const Study& st, const Evaluator& ev) {
+  return {{"type", "header"},
+          {"study", st.name},
+          {"study_hash", st.hash},
+          {"parameters", ev.variable_names()},
+          {"constraints", ev.constraint_names()},
+          {"optimizer", st.optimizer.library + ":" + st.optimizer.algorithm},
+          {"seed", st.optimizer.seed}};
+}
+
+// The journal to resume, checked against the study (its hash, its last record, and with
+// options.verify its records re-evaluated: *verified of them); nothing when there is none
+// (or only a torn header). An existing journal without --resume is bad input.
+JournalContents resumable_journal(const std::string& path, const Study& st, const Evaluator& ev,
+                                  const StudyRunOptions& opt, long* verified) {
+  JournalContents previous = read_journal(path);
+  if (previous.header.is_null()) return {};
+  if (!opt.resume) {
+    throw io::InputError(path, "",
+                         "no journal (pass --resume to continue it, or choose another --out)",
+                         "the journal of an earlier run");
+  }
+  if (previous.header.value("study_hash", "") != st.hash) {
+    throw io::InputError(path, "/study_hash", "the journal of this study (hash " + st.hash + ")",
+                         "hash " + previous.header.value("study_hash", std::string("?")));
+  }
+  check_last_record(previous, ev, path);
+  if (opt.verify >= 0) *verified = verify_records(previous, ev, opt.verify, opt.verify_seed, path);
+  return previous;
 }
 
 }  // namespace
@@ -401,6 +384,8 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   StudyOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
   io::make_directories(o.out_dir);
+  const OutputLock lock(o.out_dir, "pronk optimize");
+  remove_stale_temporaries(o.out_dir, 1);  // initial/, tuned/
   const std::string journal_path = o.out_dir + "/journal.jsonl";
 
   EvaluatorConfig cfg = st.evaluator;
@@ -408,48 +393,18 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   cfg.farm = opt.farm;
   const Evaluator evaluator(cfg);
 
-  json header = {{"type", "header"},
-                 {"study", st.name},
-                 {"study_hash", st.hash},
-                 {"parameters", evaluator.variable_names()},
-                 {"constraints", evaluator.constraint_names()},
-                 {"optimizer", st.optimizer.library + ":" + st.optimizer.algorithm},
-                 {"seed", st.optimizer.seed}};
-  JournalContents previous = read_journal(journal_path);
-  if (previous.header.is_null() && previous.torn_tail) {
-    std::filesystem::remove(journal_path);  // only a torn header: no evaluation was recorded
-  }
-  if (!previous.header.is_null()) {
-    if (!opt.resume) {
-      throw io::InputError(journal_path, "", "no journal (or --resume to continue it)",
-                           "a journal of an earlier run");
-    }
-    if (previous.header.value("study_hash", "") != st.hash) {
-      throw io::InputError(journal_path, "/study_hash",
-                           "the journal of this study (hash " + st.hash + ")",
-                           "hash " + previous.header.value("study_hash", std::string("?")));
-    }
-    check_last_record(previous, evaluator, journal_path);
-    if (previous.torn_tail) {
-      // Rewrite without the torn line so appends start on a fresh line.
-      std::string text = previous.header.dump() + "\n";
-      for (const auto& r : previous.records) text += r.line.dump() + "\n";
-      io::write_file_atomic(journal_path, text);
-    }
-  }
+  JournalContents previous = resumable_journal(journal_path, st, evaluator, opt, &o.verified);
   const long recorded = static_cast<long>(previous.records.size());
-  StudyProblem problem(evaluator, previous.records);
-  JournalWriter journal(journal_path, header);
-  std::FILE* timings = std::fopen((o.out_dir + "/timings.csv").c_str(), recorded > 0 ? "a" : "w");
-  if (timings && recorded == 0)
-    std::fprintf(timings, "index,wall_time_s,binding_time_s,simulations,strides\n");
+  TimingsFile timings(o.out_dir, recorded > 0 ? &previous : nullptr);
+  JournalWriter journal(journal_path, journal_header(st, evaluator),
+                        recorded > 0 ? prepare_for_append(journal_path, previous.end) : "");
+  StudyProblem problem(evaluator, std::move(previous.records));
   JournalObserver observer(problem, journal, timings, recorded, evaluator.variable_names(),
                            st.optimizer.max_evaluations, opt.progress);
 
   OptimizerOptions oo = st.optimizer;
   oo.stop_flag = opt.stop_flag;
   o.result = run_optimizer(problem, oo, &observer);
-  if (timings) std::fclose(timings);
   if (opt.progress) std::fprintf(stderr, "\n");
   o.replayed = problem.replayed();
 
@@ -463,6 +418,13 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
     o.validated = true;
     o.validation_initial = val->evaluate_full(o.initial.unit);
     o.validation_best = val->evaluate_full(o.best.unit);
+    if (st.validation->compare_nominal && perturbs_robot(*st.validation)) {
+      Study nominal = st;
+      nominal.validation = with_nominal_robot(*st.validation);
+      o.validation_compared = true;
+      o.validation_nominal =
+          validation_evaluator(nominal, opt.threads, opt.farm).evaluate_full(o.best.unit);
+    }
   }
   o.wall_time = now_s() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed
@@ -471,7 +433,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                                        val ? &o.validation_best : nullptr);
   o.reproduction["wall_time_s"] = now_s() - t0 - o.wall_time;
 
-  write_history(o.out_dir, read_journal(journal_path), evaluator);
+  write_history(o.out_dir, journal_path, evaluator);
   io::write_file_atomic(o.out_dir + "/design.json",
                         io::dump_checked(design_document(st, o, opt.threads)));
   io::write_file_atomic(o.out_dir + "/summary.md", summary_markdown(st, o));

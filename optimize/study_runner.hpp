@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <string>
 
 #include "optimize/study.hpp"
@@ -11,9 +12,13 @@ namespace pronk::optimize {
 
 struct StudyRunOptions {
   int threads = 1;
-  bool resume = false;    ///< continue from the journal in the output directory
-  std::string out_dir;    ///< overrides the study's output directory
-  bool progress = false;  ///< one throttled progress line on stderr
+  bool resume = false;  ///< continue from the journal in the output directory
+  /// With resume: evaluate the journal's records again and refuse any that differs: -1
+  /// none (only the last record, always), 0 every record, N a sample of N (verify_seed).
+  long verify = -1;
+  std::uint64_t verify_seed = 0;
+  std::string out_dir;                           ///< overrides the study's output directory
+  bool progress = false;                         ///< one throttled progress line on stderr
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C
   /// The evaluations' scenario runs on other processes (MPI ranks); nullptr: threads.
   JobFarm* farm = nullptr;
@@ -27,14 +32,21 @@ struct StudyOutcome {
   bool validated = false;         ///< the study has a validation set
   Evaluation validation_initial;  ///< the starting design on the validation set
   Evaluation validation_best;     ///< the tuned design on the validation set
+  /// The validation set perturbs the robot (and "compare_nominal"): the tuned design on the
+  /// same starts with the nominal robot, reported beside validation_best.
+  bool validation_compared = false;
+  Evaluation validation_nominal;
   /// The design's per-trial tolerances and fragile trials (record_reproduction).
   nlohmann::json reproduction;
   long replayed = 0;       ///< evaluations taken from the journal on --resume
+  long verified = 0;       ///< journal records evaluated again (verify)
   double wall_time = 0.0;  ///< [s]
 };
 
-/// Runs the study. Throws io::InputError for a journal of another study or
-/// an existing journal without --resume; std::runtime_error for I/O failures.
+/// Runs the study, holding the output directory's OutputLock. Throws io::InputError for a
+/// journal of another study, an edited one (see journal.hpp, journal_check.hpp), an
+/// existing journal without --resume, or a directory another run holds;
+/// std::runtime_error for I/O failures.
 StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
 
 /// The compiler that built this binary ("gcc 12.2.0", ...), recorded in designs.

@@ -35,12 +35,14 @@ case "$kind" in
     sed 's|{"kind": "lateral_offset", "range"|{"kind": "pointer", "pointer": "/controller/kp/", "range"|' \
       "$studies/map_study3_full_tilt_offset.json" > "$out/bad_axis_pointer" ;;
   journal)
-    # The fuzz target seals each line with its checksum itself.
+    # The fuzz target seals each line with its checksum itself (chained: format 2);
+    # journal_1 is an older pronk's (format 1, no "format" in the header).
     cat > "$out/journal_0" <<'JOURNAL'
-{"constraints":[],"optimizer":"nlopt:LN_BOBYQA","parameters":["kp_x","kd_x"],"seed":2,"study":"s","study_hash":"0123456789abcdef","type":"header"}
+{"constraints":[],"format":2,"optimizer":"nlopt:LN_BOBYQA","parameters":["kp_x","kd_x"],"seed":2,"study":"s","study_hash":"0123456789abcdef","type":"header"}
 {"constraints":[0.5],"cost":0.25,"index":0,"metrics":{"y_error":0.1},"ok":true,"purpose":"objective","simulations":4,"spectral_radius":0.5,"strides":40,"type":"evaluation","values":{"kd_x":2.25,"kp_x":1.5},"x":[0.5,0.5]}
 {"constraints":[1.0],"cost":1000.0,"failure":"scene: invalid","index":1,"ok":false,"purpose":"gradient","simulations":0,"spectral_radius":10,"strides":0,"type":"evaluation","values":{},"x":[0.25,1.0]}
 JOURNAL
+    sed '1s/"format":2,//' "$out/journal_0" > "$out/journal_1"
     ;;
   *) echo "unknown corpus kind $kind" >&2; exit 2 ;;
 esac

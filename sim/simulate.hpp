@@ -28,7 +28,8 @@ struct RunResult : robot::RobotRunResult {
 };
 
 /// Simulates `scene` in scene.model. Numerical trouble ends the run with a status
-/// and reason (never NaN); a full-model robot that cannot be built throws
+/// and reason (never NaN); a full-model robot that cannot be built, or a run that would
+/// hold more samples or strides than reduced/run_limits.hpp allows, throws
 /// std::invalid_argument with the reason.
 RunResult simulate(const scene::Scene& scene, const RunOptions& options = {});
 

@@ -1,5 +1,5 @@
 // Peer of `pronk bench`: MuJoCo on an MJCF model equivalent to the quad spring
-// hopper drop of `pronk bench` (app/bench_suite.cpp, quad_hopper_mechanism): a
+// hopper drop of `pronk bench` (app/bench/quad_drop.cpp, quad_hopper_mechanism): a
 // 1.5 kg body with the seed's inertia (0.0074, 0.0106, 0.0164 kg m^2), four
 // prismatic legs with 100 N/m springs of rest length 0.25 m at the hips
 // (+-0.14, +-0.115, -0.04) m, 10 g feet, dropped from 0.15 m, no joint damping.

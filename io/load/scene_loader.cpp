@@ -13,6 +13,7 @@
 #include "io/load/json_reader.hpp"
 #include "io/load/robot_settings.hpp"
 #include "io/load/scaled_settings.hpp"
+#include "sim/reduced/run_limits.hpp"
 
 namespace pronk::io {
 
@@ -337,6 +338,21 @@ void parse_scene_simulation(JsonReader m, scene::Simulation* sim) {
   m.finish();
 }
 
+// The limits of sim/reduced/run_limits.hpp: the records a run holds (the CLI records the
+// trajectory and the strides) and the fixed step of the model the scene runs in.
+void check_run_limits(const scene::Scene& s, const std::string& file) {
+  if (const auto b = reduced::memory_limit_breach(s.simulation, true, true)) {
+    throw InputError(file, "/simulation/" + b->field, b->expected, b->found);
+  }
+  const bool full = s.model == scene::ModelKind::kPseudoRigid;
+  if (full && s.pseudo_rigid.solver_auto) return;  // auto chooses its own step
+  if (const auto b =
+          reduced::fixed_step_breach(s, full ? s.pseudo_rigid.solver : s.simulation.solver)) {
+    throw InputError(file, full ? "/pseudo_rigid/solver/h_fixed" : "/simulation/solver/h_fixed",
+                     b->expected, b->found);
+  }
+}
+
 // The checks across sections, after every section is read.
 void check_scene_consistency(const scene::Scene& s, const std::string& file) {
   if (s.controller.pulse_aware_hop && s.model == scene::ModelKind::kPulse &&
@@ -346,6 +362,7 @@ void check_scene_consistency(const scene::Scene& s, const std::string& file) {
         "false, or pulse mode \"duration\" (the law plans for a known stance duration)",
         "true with pulse mode \"max_force\"");
   }
+  check_run_limits(s, file);
   if (!(s.initial.position.z() > s.simulation.fall_min_height)) {
     throw InputError(
         file, "/initial/position/2",

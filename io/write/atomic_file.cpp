@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/load/input_error.hpp"
+#include "io/write/crash_point.hpp"
 
 namespace pronk::io {
 
@@ -33,6 +34,7 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     ::unlink(tmp.c_str());
     throw std::runtime_error("cannot flush " + tmp + ": " + std::strerror(errno));
   }
+  crash_point();  // tests: a kill that leaves the temporary behind (io/write/crash_point.hpp)
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string err = std::strerror(errno);
     ::unlink(tmp.c_str());

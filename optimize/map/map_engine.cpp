@@ -244,17 +244,19 @@ bool all_stabilized_at(const MapStudy& st, long row, double v, long probe) {
   return true;
 }
 
+bool next_probe(const MapStudy& st, const BoundaryResult& b, double* mid) {
+  if (!(b.bad - b.good > st.resolution && b.probes < st.max_bisection_steps)) return false;
+  *mid = st.axes[0].log_scale ? std::sqrt(b.good * b.bad) : 0.5 * (b.good + b.bad);
+  return *mid > b.good && *mid < b.bad;  // false: no representable midpoint
+}
+
 BoundaryResult bisect_row(const MapStudy& st, BoundaryResult b) {
   if (b.status != "bisected") return b;
-  const bool log = st.axes[0].log_scale;
-  while (b.bad - b.good > st.resolution && b.probes < st.max_bisection_steps) {
-    const double mid = log ? std::sqrt(b.good * b.bad) : 0.5 * (b.good + b.bad);
-    if (!(mid > b.good && mid < b.bad)) break;  // no representable midpoint
+  for (double mid = 0.0; next_probe(st, b, &mid); ++b.probes) {
     if (all_stabilized_at(st, b.row, mid, b.probes))
       b.good = mid;
     else
       b.bad = mid;
-    ++b.probes;
   }
   b.boundary = b.good;
   return b;

@@ -99,6 +99,10 @@ std::vector<CellSummary> summarize(const MapStudy& st, const std::vector<CellRes
 /// The bracket of a row from its cells; status set, and for "bisected" good/bad
 /// set to the last good and the first bad cell value (probes not yet run).
 BoundaryResult initial_bracket(const MapStudy& st, const std::vector<CellSummary>& cells, long row);
+/// The point the next bisection probe of bracket b (after b.probes probes) tests; false when
+/// the bisection has ended (bad - good <= resolution, the step limit, or no representable
+/// midpoint).
+bool next_probe(const MapStudy& st, const BoundaryResult& b, double* mid);
 /// Refines a "bisected" bracket by bisection (serial).
 BoundaryResult bisect_row(const MapStudy& st, BoundaryResult bracket);
 /// Whether every trial of the primary model stabilizes at axis-0 value v in `row`.

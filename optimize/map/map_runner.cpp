@@ -15,7 +15,9 @@
 #include <mutex>
 
 #include "optimize/journal.hpp"
+#include "optimize/map/map_journal.hpp"
 #include "optimize/map/map_output.hpp"
+#include "optimize/output_lock.hpp"
 #include "optimize/thread_pool.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/load/input_error.hpp"
@@ -31,128 +33,6 @@ namespace {
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-
-// What a journal holds: finished cells and bisected rows.
-struct JournalState {
-  std::map<long, CellResult> cells;
-  std::map<long, BoundaryResult> boundaries;
-  nlohmann::json last_cell;  ///< the last cell record read (null when none)
-  long last_cell_line = 0;
-};
-
-// Reads the journal of a map; a torn last line is dropped (and cut from the
-// file so appends start on a fresh line). A journal of another study is bad input.
-JournalState read_map_journal(const std::string& path, const MapStudy& st) {
-  JournalState js;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return js;
-  std::string line;
-  long lineno = 0;
-  std::uintmax_t good_bytes = 0, offset = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const bool complete = !in.eof();  // a last line without '\n' is torn
-    offset += line.size() + (complete ? 1 : 0);
-    json j;
-    try {
-      if (!complete) throw std::runtime_error("no end of line");
-      j = io::parse_json_text(line, path);
-    } catch (const std::exception& e) {
-      if (in.peek() == std::ifstream::traits_type::eof()) break;  // torn tail
-      throw io::InputError(path, "line " + std::to_string(lineno), "a journal record", e.what());
-    }
-    good_bytes = offset;
-    check_seal(j, path, lineno);
-    if (lineno == 1) {
-      if (j.value("type", "") != "pronk_map_journal" || j.value("hash", "") != st.hash) {
-        throw io::InputError(path, "/hash", "the journal of this map study (hash " + st.hash + ")",
-                             j.contains("hash") ? io::describe(j.at("hash")) : "no hash");
-      }
-      continue;
-    }
-    try {
-      const std::string task = j.at("task").get<std::string>();
-      if (task == "cell") {
-        CellResult c = cell_from_json(j);
-        if (c.index < 0 || c.index >= st.cells() || c.trials.size() != st.models.size())
-          throw std::runtime_error("cell record does not fit the study");
-        js.cells[c.index] = std::move(c);
-        js.last_cell = j;
-        js.last_cell_line = lineno;
-      } else if (task == "boundary") {
-        BoundaryResult b = boundary_from_json(j);
-        js.boundaries[b.row] = b;
-      }
-    } catch (const std::exception& e) {
-      throw io::InputError(path, "line " + std::to_string(lineno), "a map journal record",
-                           e.what());
-    }
-  }
-  in.close();
-  if (good_bytes < std::filesystem::file_size(path)) std::filesystem::resize_file(path, good_bytes);
-  return js;
-}
-
-// Cells are deterministic: the journal's last cell, computed again, must give the same
-// bytes, or the journal was not written by this study on this build.
-void check_last_cell(const JournalState& js, const MapStudy& st, const std::string& path) {
-  if (js.last_cell.is_null()) return;
-  json recorded = js.last_cell;
-  recorded.erase("checksum");
-  const long index = recorded.at("cell").get<long>();
-  const json again = compute_task(st, MapTask{0, index, 0.0, 0.0});
-  if (again.dump() == recorded.dump()) return;
-  throw io::InputError(path, "line " + std::to_string(js.last_cell_line),
-                       "the record its re-computation gives (cells are deterministic; a journal "
-                       "edited or written by another build cannot be resumed)",
-                       "a different record for cell " + std::to_string(index));
-}
-
-// The map journal: one JSON line per finished task, flushed to the OS at once
-// (an interrupted or killed process loses nothing) and fsynced at most every
-// half second and at the end (a power cut loses at most that much, which
-// --resume recomputes). A cell is a few milliseconds of work, an fsync here
-// about 6 ms: syncing every record would cost more than the map.
-class MapJournal {
- public:
-  MapJournal(const std::string& path, const json& header) : path_(path) {
-    std::error_code ec;
-    const bool empty =
-        !std::filesystem::exists(path, ec) || std::filesystem::file_size(path, ec) == 0;
-    file_ = std::fopen(path.c_str(), "a");
-    if (!file_)
-      throw std::runtime_error("cannot open journal " + path + ": " + std::strerror(errno));
-    if (empty) {
-      append(header);
-      sync();
-    }
-  }
-  ~MapJournal() {
-    try {
-      sync();
-    } catch (...) {
-    }
-    std::fclose(file_);
-  }
-  MapJournal(const MapJournal&) = delete;
-  MapJournal& operator=(const MapJournal&) = delete;
-  void append(const json& record) {
-    const std::string text = sealed(record).dump() + "\n";
-    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
-      throw std::runtime_error("cannot write journal " + path_ + ": " + std::strerror(errno));
-    if (now_s() - last_sync_ > 0.5) sync();
-  }
-  void sync() {
-    if (::fsync(fileno(file_)) != 0)
-      throw std::runtime_error("cannot sync journal " + path_ + ": " + std::strerror(errno));
-    last_sync_ = now_s();
-  }
-
- private:
-  std::FILE* file_ = nullptr;
-  std::string path_;
-  double last_sync_ = 0.0;
-};
 
 }  // namespace
 
@@ -232,13 +112,55 @@ struct MapRun {
   const MapStudy& st;
   const MapRunOptions& options;
   TaskRunner& runner;
-  MapJournal& journal;
+  JournalWriter& journal;
   MapProgress& progress;
   double t0;
 };
 
+/// The journal to resume, checked (and verified with options.verify: out->verified); none
+/// when there is none (or only a torn header). An existing one without --resume is refused.
+MapJournalState resumable_map_journal(const std::string& path, const MapStudy& st,
+                                      const MapRunOptions& options, TaskRunner& runner,
+                                      MapOutcome* out) {
+  MapJournalState js = read_map_journal(path, st);
+  if (!js.exists) return {};
+  if (!options.resume) {
+    throw io::InputError(path, "",
+                         "no journal (pass --resume to continue it, or choose another --out)",
+                         "the journal of an earlier run");
+  }
+  out->verified = verify_map_journal(js, st, runner, options.verify, options.verify_seed, path);
+  return js;
+}
+
+/// Hands the runner's results on in task order, whatever order the workers finish them in:
+/// a result waits until every earlier task's result has been handed on, so the journal is
+/// the same bytes for any thread or rank count, and a resumed map writes the records an
+/// uninterrupted one does. A result still waiting when the map stops is computed again on
+/// --resume.
+class InTaskOrder {
+ public:
+  InTaskOrder(const std::vector<MapTask>& tasks,
+              std::function<void(const MapTask&, const json&)> deliver)
+      : tasks_(tasks), deliver_(std::move(deliver)) {}
+  void operator()(const MapTask& task, const json& r) {
+    waiting_.emplace(static_cast<size_t>(&task - tasks_.data()), r);
+    for (auto it = waiting_.find(next_); it != waiting_.end(); it = waiting_.find(next_)) {
+      deliver_(tasks_[next_], it->second);
+      waiting_.erase(it);
+      ++next_;
+    }
+  }
+
+ private:
+  const std::vector<MapTask>& tasks_;
+  std::function<void(const MapTask&, const json&)> deliver_;
+  std::map<size_t, json> waiting_;
+  size_t next_ = 0;
+};
+
 /// Phase 1: the cells not in the journal. Returns false when stopped (out says why).
-bool run_map_cells(const MapRun& run, JournalState& js, std::vector<CellResult>* cells,
+bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResult>* cells,
                    MapOutcome* out) {
   const MapStudy& st = run.st;
   std::vector<bool> have(cells->size(), false);
@@ -255,16 +177,14 @@ bool run_map_cells(const MapRun& run, JournalState& js, std::vector<CellResult>*
   }
   long done = out->cells_replayed;
   const double t_cells = now_s();
-  run.runner.run(
-      st, tasks,
-      [&](const MapTask& task, const json& r) {
-        run.journal.append(r);
-        (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
-        have[static_cast<size_t>(task.index)] = true;
-        ++out->cells_computed;
-        run.progress("cells", ++done, st.cells());
-      },
-      run.options.stop_flag);
+  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
+                   run.journal.append(r);
+                   (*cells)[static_cast<size_t>(task.index)] = cell_from_json(r);
+                   have[static_cast<size_t>(task.index)] = true;
+                   ++out->cells_computed;
+                   run.progress("cells", ++done, st.cells());
+                 }),
+                 run.options.stop_flag);
   for (bool h : have) {
     if (!h) {
       out->status = "stopped";
@@ -280,7 +200,7 @@ bool run_map_cells(const MapRun& run, JournalState& js, std::vector<CellResult>*
 
 /// Phase 2: the boundary of every row, bisected where a good cell is followed by a bad one.
 /// Returns false when stopped (out says why).
-bool run_map_boundaries(const MapRun& run, const JournalState& js, MapOutcome* out) {
+bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome* out) {
   const MapStudy& st = run.st;
   out->boundaries.resize(static_cast<size_t>(st.rows()));
   std::vector<bool> have_b(out->boundaries.size(), false);
@@ -301,16 +221,14 @@ bool run_map_boundaries(const MapRun& run, const JournalState& js, MapOutcome* o
   }
   long bdone = 0;
   const double t_bisect = now_s();
-  run.runner.run(
-      st, tasks,
-      [&](const MapTask& task, const json& r) {
-        run.journal.append(r);
-        out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
-        have_b[static_cast<size_t>(task.index)] = true;
-        ++out->rows_bisected;
-        run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
-      },
-      run.options.stop_flag);
+  run.runner.run(st, tasks, InTaskOrder(tasks, [&](const MapTask& task, const json& r) {
+                   run.journal.append(r);
+                   out->boundaries[static_cast<size_t>(task.index)] = boundary_from_json(r);
+                   have_b[static_cast<size_t>(task.index)] = true;
+                   ++out->rows_bisected;
+                   run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
+                 }),
+                 run.options.stop_flag);
   out->bisection_time = now_s() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)
@@ -370,17 +288,14 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   out.out_dir = options.out_dir.empty() ? st.output_dir : options.out_dir;
   out.cells = st.cells();
   io::make_directories(out.out_dir);
+  const OutputLock lock(out.out_dir, "pronk map");
+  remove_stale_temporaries(out.out_dir, 0);
   const std::string journal_path = out.out_dir + "/journal.jsonl";
-  JournalState js;
-  if (options.resume) {
-    js = read_map_journal(journal_path, st);
-    check_last_cell(js, st, journal_path);
-  } else {
-    std::error_code ec;
-    std::filesystem::remove(journal_path, ec);
-  }
-  MapJournal journal(journal_path,
-                     json{{"type", "pronk_map_journal"}, {"name", st.name}, {"hash", st.hash}});
+  MapJournalState js = resumable_map_journal(journal_path, st, options, runner, &out);
+  // fsynced at most every half second and at the end: a cell is a few milliseconds of work,
+  // an fsync about 6 ms (a power cut loses at most that much, which --resume recomputes).
+  JournalWriter journal(journal_path, map_journal_header(st),
+                        js.exists ? prepare_for_append(journal_path, js.end) : "", 0.5);
   MapProgress progress(st, options, t0);
   const MapRun run{st, options, runner, journal, progress, t0};
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -57,9 +58,13 @@ struct MapRunOptions {
   int threads = 1;               ///< LocalRunner threads when no runner is given
   TaskRunner* runner = nullptr;  ///< e.g. the MPI runner; nullptr: LocalRunner(threads)
   bool resume = false;           ///< continue from the journal in the output directory
-  std::string out_dir;           ///< default: the study's
-  bool progress = false;         ///< a throttled progress line on stderr
-  bool figures = true;           ///< render the SVG heat maps (the .gp scripts are always written)
+  /// With resume: compute the journal's records again and refuse any that differs: -1 none
+  /// (only the last cell, always), 0 every record, N a sample of N (verify_seed).
+  long verify = -1;
+  std::uint64_t verify_seed = 0;
+  std::string out_dir;    ///< default: the study's
+  bool progress = false;  ///< a throttled progress line on stderr
+  bool figures = true;    ///< render the SVG heat maps (the .gp scripts are always written)
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C: stop after the running tasks
   /// Empty when valid, else which field, its value and the rule.
   std::string validate() const;
@@ -72,6 +77,7 @@ struct MapOutcome {
   long cells = 0;
   long cells_computed = 0, cells_replayed = 0;  ///< this run / from the journal
   long rows_bisected = 0, bisections_replayed = 0;
+  long verified = 0;       ///< journal records computed again (verify)
   long simulations = 0;    ///< trial runs of the whole map (cells and probes)
   double wall_time = 0.0;  ///< [s]
   double cells_time = 0.0, bisection_time = 0.0, output_time = 0.0;  ///< phases of wall_time [s]
@@ -81,8 +87,10 @@ struct MapOutcome {
 };
 
 /// Runs (or resumes) the map and writes cells.csv, trials.csv, boundary.csv,
-/// summary.json, fraction.svg and disagreement.svg (with their .gp scripts).
-/// Throws io::InputError for a journal of another study, std::runtime_error on I/O failure.
+/// summary.json, fraction.svg and disagreement.svg (with their .gp scripts), holding the
+/// output directory's OutputLock. Throws io::InputError for a journal of another study, an
+/// edited one (map_journal.hpp), an existing journal without resume, or a directory another
+/// run holds; std::runtime_error on I/O failure.
 MapOutcome run_map(const MapStudy& st, const MapRunOptions& options);
 
 }  // namespace pronk::optimize::map

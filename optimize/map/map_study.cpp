@@ -381,7 +381,7 @@ void parse_map_study_trials(io::JsonReader t, MapStudy* st) {
   st->trials.count = t.integer_or("count", 16, 1, 100000);
   st->trials.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 9007199254740991L));
   st->trial_set.duration = t.number_or("duration", 12.0, 1e-3, 1e6);
-  st->trial_set.strides = t.integer_or("strides", 0, 0, 100000000);
+  st->trial_set.strides = t.integer_or("strides", 0, 0, 10000000);  // reduced::kMaxStrides
   auto& tr = st->trials;
   range(t, "tilt_deg", kDeg, &tr.tilt_lo, &tr.tilt_hi);
   range(t, "offset", 1.0, &tr.offset_lo, &tr.offset_hi);

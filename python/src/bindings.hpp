@@ -20,8 +20,11 @@ namespace py = pybind11;
 /// JSON -> Python (dict, list, str, int, float, bool, None); doubles keep every bit.
 py::object to_python(const nlohmann::json& j);
 /// Python -> JSON: dict (str keys), list, tuple, str, int, float, bool, None,
-/// NumPy scalars and arrays. TypeError for anything else.
-nlohmann::json from_python(const py::handle& obj);
+/// NumPy scalars and arrays. TypeError for anything else; io::InputError naming `file`
+/// and the JSON Pointer (below `pointer`, where obj goes) for nesting deeper than
+/// io::kMaxJsonDepth or a container that contains itself (the file readers' limits).
+nlohmann::json from_python(const py::handle& obj, const std::string& file,
+                           const std::string& pointer = "");
 
 /// A table as {column name: 1-D float64 array} (columns in order).
 py::dict table_to_dict(const io::Table& t);
@@ -38,7 +41,10 @@ bool is_path_arg(const py::handle& path_or_dict);
 /// Overrides as "/ptr=value" assignments: from a dict {pointer: value} (the value
 /// as JSON) or a list of "/ptr=value" strings (the CLI's --set); None: none.
 std::vector<std::string> overrides_arg(const py::handle& overrides);
-/// Worker threads: n > 0 as given, 0 (or None): every hardware thread.
+/// Most worker threads an argument may ask for (the CLI's --threads range is 1 to 1024).
+inline constexpr int kMaxThreads = 1024;
+/// Worker threads: 1 to kMaxThreads as given, 0 (or None): every hardware thread.
+/// ValueError for anything else (a negative or larger count, a non-integer).
 int threads_arg(const py::handle& threads);
 
 void bind_errors(py::module_& m);

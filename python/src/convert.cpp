@@ -1,9 +1,13 @@
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
 #include "python/src/bindings.hpp"
+#include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::python {
 
@@ -37,33 +41,91 @@ py::object to_python(const nlohmann::json& j) {
   }
 }
 
-nlohmann::json from_python(const py::handle& obj) {
-  if (obj.is_none()) return nullptr;
-  if (py::isinstance<py::bool_>(obj)) return obj.cast<bool>();
-  if (py::isinstance<py::int_>(obj)) return obj.cast<std::int64_t>();
-  if (py::isinstance<py::float_>(obj)) return obj.cast<double>();
-  if (py::isinstance<py::str>(obj)) return obj.cast<std::string>();
-  if (py::isinstance<py::dict>(obj)) {
+namespace {
+
+/// Python -> JSON with the limits the file readers keep: nesting at most kMaxJsonDepth
+/// levels (deeper recursion would overflow the C++ stack) and no container that holds
+/// itself (a cycle has no JSON form). `path` holds the JSON Pointer tokens down to the
+/// value in hand, `open` the containers being converted (the cycle check).
+class JsonFromPython {
+ public:
+  JsonFromPython(std::string file, std::string pointer)
+      : file_(std::move(file)), base_(std::move(pointer)) {}
+
+  nlohmann::json convert(const py::handle& obj) {
+    if (obj.is_none()) return nullptr;
+    if (py::isinstance<py::bool_>(obj)) return obj.cast<bool>();
+    if (py::isinstance<py::int_>(obj)) return obj.cast<std::int64_t>();
+    if (py::isinstance<py::float_>(obj)) return obj.cast<double>();
+    if (py::isinstance<py::str>(obj)) return obj.cast<std::string>();
+    const bool is_dict = py::isinstance<py::dict>(obj);
+    if (is_dict || py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj)) {
+      enter(obj);
+      nlohmann::json out = is_dict ? dict(obj) : list(obj);
+      open_.pop_back();
+      return out;
+    }
+    // NumPy: arrays and scalars through their Python equivalents.
+    if (py::hasattr(obj, "tolist") && py::hasattr(obj, "dtype")) {
+      return convert(obj.attr("tolist")());
+    }
+    throw py::type_error("cannot be written as JSON: " + py::repr(obj).cast<std::string>());
+  }
+
+ private:
+  /// Opens a container one level down; InputError past the depth limit or on a cycle.
+  void enter(const py::handle& obj) {
+    if (std::find(open_.begin(), open_.end(), obj.ptr()) != open_.end()) {
+      throw io::InputError(file_, pointer(), "a tree of dicts and lists (JSON has no cycles)",
+                           "a container that contains itself");
+    }
+    if (open_.size() >= io::kMaxJsonDepth) {
+      throw io::InputError(
+          file_, pointer(),
+          "a value nested at most " + std::to_string(io::kMaxJsonDepth) + " levels deep",
+          "more than " + std::to_string(io::kMaxJsonDepth) + " levels");
+    }
+    open_.push_back(obj.ptr());
+  }
+  nlohmann::json dict(const py::handle& obj) {
     nlohmann::json out = nlohmann::json::object();
     for (const auto& [k, v] : obj.cast<py::dict>()) {
       if (!py::isinstance<py::str>(k)) {
         throw py::type_error("JSON object keys must be str, found " +
                              py::repr(k).cast<std::string>());
       }
-      out[k.cast<std::string>()] = from_python(v);
+      std::string key = k.cast<std::string>();
+      path_.push_back(key);
+      out[key] = convert(v);
+      path_.pop_back();
     }
     return out;
   }
-  if (py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj)) {
+  nlohmann::json list(const py::handle& obj) {
     nlohmann::json out = nlohmann::json::array();
-    for (const auto& v : obj) out.push_back(from_python(v));
+    for (const auto& v : obj) {
+      path_.push_back(std::to_string(out.size()));
+      out.push_back(convert(v));
+      path_.pop_back();
+    }
     return out;
   }
-  // NumPy: arrays and scalars through their Python equivalents.
-  if (py::hasattr(obj, "tolist") && py::hasattr(obj, "dtype")) {
-    return from_python(obj.attr("tolist")());
+  std::string pointer() const {
+    std::string p = base_;
+    for (const auto& t : path_) p += "/" + io::pointer_escape(t);
+    return p;
   }
-  throw py::type_error("cannot be written as JSON: " + py::repr(obj).cast<std::string>());
+
+  std::string file_, base_;
+  std::vector<std::string> path_;
+  std::vector<PyObject*> open_;
+};
+
+}  // namespace
+
+nlohmann::json from_python(const py::handle& obj, const std::string& file,
+                           const std::string& pointer) {
+  return JsonFromPython(file, pointer).convert(obj);
 }
 
 py::array_t<double> to_array(const std::vector<double>& v) {
@@ -111,7 +173,7 @@ nlohmann::json document_arg(const py::handle& path_or_dict, std::string* file) {
   }
   if (py::isinstance<py::dict>(path_or_dict)) {
     *file = "<dict>";
-    return from_python(path_or_dict);
+    return from_python(path_or_dict, *file);
   }
   throw py::type_error("expected a path (str or os.PathLike) or a dict, found " +
                        py::repr(path_or_dict).cast<std::string>());
@@ -122,7 +184,8 @@ std::vector<std::string> overrides_arg(const py::handle& overrides) {
   if (overrides.is_none()) return out;
   if (py::isinstance<py::dict>(overrides)) {
     for (const auto& [k, v] : overrides.cast<py::dict>()) {
-      out.push_back(k.cast<std::string>() + "=" + from_python(v).dump());
+      const std::string ptr = k.cast<std::string>();
+      out.push_back(ptr + "=" + from_python(v, "overrides", ptr).dump());
     }
     return out;
   }
@@ -132,12 +195,28 @@ std::vector<std::string> overrides_arg(const py::handle& overrides) {
 }
 
 int threads_arg(const py::handle& threads) {
-  const int n = threads.is_none() ? 0 : threads.cast<int>();
-  if (n < 0)
-    throw py::value_error("threads: expected 0 (all cores) or more, found " + std::to_string(n));
-  if (n > 0) return n;
+  if (!threads.is_none()) {
+    // As the CLI's --threads (1 to 1024), with 0 for every core. Any integer (int, NumPy
+    // integers: __index__) of any size is read; a bool is no count.
+    long long n = -1;
+    int overflow = 0;
+    if (!py::isinstance<py::bool_>(threads)) {
+      const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(threads.ptr()));
+      if (index) {
+        n = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+      } else {
+        PyErr_Clear();
+      }
+    }
+    if (overflow != 0 || n < 0 || n > kMaxThreads) {
+      throw py::value_error("threads: expected 0 (all cores) or 1 to " +
+                            std::to_string(kMaxThreads) + ", found " +
+                            py::repr(threads).cast<std::string>());
+    }
+    if (n > 0) return static_cast<int>(n);
+  }
   const unsigned hw = std::thread::hardware_concurrency();
-  return hw > 0 ? static_cast<int>(hw) : 1;
+  return hw > 0 ? static_cast<int>(std::min<unsigned>(hw, kMaxThreads)) : 1;
 }
 
 }  // namespace pronk::python

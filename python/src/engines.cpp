@@ -1,5 +1,6 @@
 // pronk.run_map and pronk.reproduce: the robustness-map engine and the
 // reproduction of a tuned design, as `pronk map` and `pronk reproduce` run them.
+#include <cmath>
 #include <filesystem>
 
 #include "io/load/scene_loader.hpp"
@@ -67,12 +68,21 @@ py::dict run_map(const py::handle& path_or_dict, const py::handle& threads, cons
                   py::arg("simulations") = o.simulations, py::arg("wall_time") = o.wall_time);
 }
 
+// rtol as the CLI's --rtol takes it: a finite number > 0 (ValueError otherwise).
+double rtol_arg(double rtol) {
+  if (!(std::isfinite(rtol) && rtol > 0.0)) {
+    throw py::value_error("rtol: expected a finite number > 0, found " +
+                          py::repr(py::float_(rtol)).cast<std::string>());
+  }
+  return rtol;
+}
+
 py::dict reproduce(const py::handle& design, const py::handle& threads, const py::handle& rtol) {
   std::string file;
   const nlohmann::json doc = document_arg(design, &file);
   optimize::ReproduceOptions opt;
   opt.threads = threads_arg(threads);
-  if (!rtol.is_none()) opt.rtol = rtol.cast<double>();
+  if (!rtol.is_none()) opt.rtol = rtol_arg(rtol.cast<double>());
   optimize::ReproduceReport rep;
   {
     ReleaseGil nogil;

@@ -4,7 +4,12 @@
 // optional body-level error norm, energies and monitors. One object per run
 // (it holds scratch space, memos and a counter); the Mechanism it refers to is const, and
 // what the run changes as it goes (rest lengths, surfaces) it reads from the run's
-// MechanismInputs (inputs.hpp).
+// MechanismInputs (inputs.hpp). The implementation, one concern per file: system.cpp (the
+// skeleton: construction, kinematics, the right-hand side), system_connections.cpp (the
+// connections' forces, the transfer of node forces), system_surfaces.cpp (surfaces with their
+// Jacobian blocks), system_jacobian.cpp (the Jacobian's assembly and check),
+// system_dissipation.cpp (the dissipation split of method verlet), system_observe.cpp (the error
+// norm, energies, power, monitors).
 #pragma once
 
 #include <array>
@@ -157,6 +162,12 @@ class MechanismSystem final : public ode::MechanicalSystem {
   enum class ForceSet { kAll, kConservative };
   /// rhs() (kAll) and conservative_rhs() (kConservative).
   void evaluate(ForceSet set, const ode::Vec& y, ode::Vec& dydt) const;
+  /// evaluate()'s connection forces into force_ (with `memo`, each length into memo_); counts
+  /// an evaluation in which the zero-length rule fired (zero_length_).
+  void add_connection_forces(ForceSet set, const ode::Vec& y, bool memo) const;
+  /// evaluate()'s surface forces of every held (surface, node) pair into force_ and torque_
+  /// (with `memo`, what observe() reads of each pair into memo_.pairs).
+  void add_surface_forces(ForceSet set, const ode::Vec& y, bool memo) const;
   /// The nodes surface si holds now: its own, or none (SurfaceInputs::holds).
   const std::vector<NodeRef>& held_nodes(size_t si) const {
     return in_->surfaces[si].holds ? m_.surfaces[si].nodes : no_nodes_;
@@ -261,8 +272,10 @@ class MechanismSystem final : public ode::MechanicalSystem {
                                std::vector<std::pair<int, Eigen::Vector3d>>& out,
                                const BodyFrame* known_frame = nullptr,
                                const std::array<Eigen::Matrix3d, 4>* known_omega = nullptr) const;
+  /// jacobian(): the blocks of grounded surface si's touching nodes (spring, damper, friction).
+  void grounded_surface_jacobian(size_t si, const ode::Vec& y) const;
   /// Jacobian blocks of the attached_surface_forces of every active node on
-  /// surfaces attached to body b, by central differences.
+  /// surfaces attached to body b, by forward differences.
   void attached_surfaces_jacobian(int b, const ode::Vec& y) const;
 
   /// fit_attitude of body b's masses at y, memoised: a fit is a pure function of the

@@ -9,6 +9,7 @@
 
 #include "sim/control/stance_planner.hpp"
 #include "sim/reduced/rigid_body.hpp"
+#include "sim/reduced/run_limits.hpp"
 #include "sim/reduced/run_record.hpp"
 #include "sim/run/hybrid_run.hpp"
 
@@ -142,13 +143,14 @@ class ReducedRun final : public run::HybridModel {
 
   ReducedRun(const scene::Scene& scene, const RunOptions& options)
       : scene_(scene),
+        belief_(scene::controller_view(scene)),
         options_(options),
         pulse_(scene.model == scene::ModelKind::kPulse),
         model_(scene, /*impulse_quadrature=*/pulse_),
         rhs_(model_),
         body_controller_(scene.controller, scene.gravity, scene.legs.length, !scene.legs.body_only,
                          !model_.layout.quaternion, pulse_ ? scene.pulse.duration : 0.0),
-        leg_controller_(control::make_leg_controller(scene)),
+        leg_controller_(control::make_leg_controller(belief_)),
         touchdown_(scene.legs.length),
         fall_low_(scene.simulation.fall_min_height),
         fall_tilt_(model_.layout, scene.simulation.fall_max_tilt),
@@ -181,6 +183,15 @@ class ReducedRun final : public run::HybridModel {
     if (small_angle() && y.segment<3>(6).cwiseAbs().maxCoeff() > kSmallAngleLimit) {
       angle_watch_.exceeded = true;  // the initial attitude already leaves the range
     }
+  }
+  /// A run the fixed-step rule refuses (run_limits.hpp): `diverged` at t = 0 with the reason,
+  /// the initial sample kept.
+  run::HybridEnd refuse(ode::Stepper& stepper, const ode::Vec& y0, std::string reason) {
+    stepper.reset(rhs_, 0.0, y0);
+    start(stepper, y0);
+    result.status = RunStatus::kDiverged;
+    result.reason = std::move(reason);
+    return {0.0, y0};
   }
   bool take_pending_event() override { return std::exchange(pending_touchdown_, false); }
   double segment_end(double) const override {
@@ -250,11 +261,22 @@ class ReducedRun final : public run::HybridModel {
     result.reason = std::move(reason);
     return run::Next::kStop;
   }
+  /// |Delta E| over the flight ending at y relative to m g h; without gravity (no potential
+  /// energy, no height scale) relative to the flight's own energy, its kinetic energy (a
+  /// body at rest in zero gravity stays exactly at rest: 0).
+  double flight_energy_drift(const ode::Vec& y) const {
+    const double change = std::abs(model_.energy(y) - flight_energy_);
+    const double scale = energy_scale_ > 0.0 ? energy_scale_ : std::abs(flight_energy_);
+    return change > 0.0 ? change / scale : 0.0;
+  }
   run::Next touchdown(double t, ode::Vec& y);
   run::Next scheduled_time(double t, ode::Vec& y);
   void impulse(const control::StancePlan& plan, const BodyState& s, ode::Vec& y);
 
   const scene::Scene& scene_;
+  /// The scene as the controller sees it: the robot's nominal numbers when a robust-design
+  /// scenario perturbed the robot (scene::ControllerModel).
+  const scene::Scene belief_;
   const RunOptions& options_;
   const bool pulse_;
   const RigidBodyModel model_;
@@ -286,15 +308,14 @@ class ReducedRun final : public run::HybridModel {
 run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
   // Flight energy is conserved (torque-free ballistic flight): monitor it.
   result.monitors.max_flight_energy_drift =
-      std::max(result.monitors.max_flight_energy_drift,
-               std::abs(model_.energy(y) - flight_energy_) / energy_scale_);
+      std::max(result.monitors.max_flight_energy_drift, flight_energy_drift(y));
   result.monitors.max_event_residual =
       std::max(result.monitors.max_event_residual, std::abs(y[2] - scene_.legs.length));
   finish_stride(t);
   ++touchdown_events_;
   if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
   const BodyState s = model_.decode(y);
-  const control::StanceContext ctx{scene_, body_controller_, *leg_controller_};
+  const control::StanceContext ctx{belief_, body_controller_, *leg_controller_};
   plan_ = control::plan_stance(ctx, touchdowns_, t, s);
   current_ = open_stride(touchdowns_++, t, s, plan_, scene_, result.warnings);
   have_stride_ = true;
@@ -305,7 +326,12 @@ run::Next ReducedRun::touchdown(double t, ode::Vec& y) {
   }
   stance_ = true;
   stance_end_ = t + plan_.duration;
-  rhs_.set_leg_load(plan_.net_force_body, plan_.net_moment_body);
+  // The legs push at their own force limit for the planned time (max_force mode): a limit
+  // the controller does not know scales the pushes.
+  const double gain = scene_.pulse.mode == scene::PulseMode::kMaxForce
+                          ? scene_.pulse.max_force / belief_.pulse.max_force
+                          : 1.0;
+  rhs_.set_leg_load(gain * plan_.net_force_body, gain * plan_.net_moment_body);
   y.segment<3>(model_.layout.quadrature_index()).setZero();
   double peak = 0.0;
   for (const auto& f : plan_.leg_force) peak = std::max(peak, f.norm());
@@ -358,12 +384,15 @@ run::Next ReducedRun::scheduled_time(double t, ode::Vec& y) {
 
 RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  require_memory_limits(scene.simulation, options.record_trajectory, options.record_strides);
   ReducedRun hybrid(scene, options);
   const RigidBodyModel& model = hybrid.model();
   auto stepper = ode::make_stepper(scene.simulation.solver, model.layout.size());
   ode::Vec y0(model.layout.size());
   model.initial_state(scene, y0);
-  const run::HybridEnd end = run::run_hybrid(hybrid, *stepper, 0.0, y0);
+  const auto too_long = fixed_step_breach(scene, scene.simulation.solver);
+  const run::HybridEnd end = too_long ? hybrid.refuse(*stepper, y0, too_long->reason())
+                                      : run::run_hybrid(hybrid, *stepper, 0.0, y0);
   hybrid.finish_stride(-1.0);  // last stride: no next touchdown, stride time 0
   RunResult& result = hybrid.result;
   finish_run(result, end.t, model.decode(end.y), hybrid.touchdowns(), scene);

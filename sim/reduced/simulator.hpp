@@ -18,7 +18,10 @@ struct RunOptions {
 };
 
 /// Simulates the scene with its model (impulse or pulse). Never throws for
-/// numerical trouble: falls and divergence end the run with a status and reason.
+/// numerical trouble: falls and divergence end the run with a status and reason; a fixed
+/// step too long to see every flight ends it `diverged` at t = 0 (run_limits.hpp). Throws
+/// std::invalid_argument (the numbers in the message) when the run would hold more records
+/// than run_limits.hpp allows: more trajectory samples (recorded) or strides (recorded).
 RunResult simulate(const scene::Scene& scene, const RunOptions& options = {});
 
 }  // namespace pronk::reduced

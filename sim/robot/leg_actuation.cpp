@@ -38,8 +38,9 @@ double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
     }
     if (impulse == 0.0) continue;
     double f = impulse / T, duration = T;
-    if (prs_.actuator_max_force > 0.0 && std::abs(f) > prs_.actuator_max_force) {
-      f = std::copysign(prs_.actuator_max_force, f);
+    if (belief_.pseudo_rigid.actuator_max_force > 0.0 &&
+        std::abs(f) > belief_.pseudo_rigid.actuator_max_force) {
+      f = std::copysign(belief_.pseudo_rigid.actuator_max_force, f);
       if (prs_.impulse_feedback) {
         // The leg measures the net impulse it gives the body (its force minus its
         // share s of the weight it was compensating for, shares in proportion to
@@ -49,9 +50,9 @@ double RobotRun::command_actuators(const control::StancePlan& plan, double t) {
         for (const auto& q : plan.leg_impulse) sum += q.norm();
         const double share =
             sum > 0.0 ? plan.gravity_compensation / T * std::abs(impulse) / sum : 0.0;
-        const double net_rate = prs_.actuator_max_force - share;
+        const double net_rate = belief_.pseudo_rigid.actuator_max_force - share;
         duration = net_rate > 0.0 ? (std::abs(impulse) - share * T) / net_rate
-                                  : std::abs(impulse) / prs_.actuator_max_force;
+                                  : std::abs(impulse) / belief_.pseudo_rigid.actuator_max_force;
       }
       ++result.run.warnings["actuator_saturated"];
     }
@@ -105,8 +106,8 @@ double RobotRun::energy_thrust(double t, const ode::Vec& y) {
     if (foot.z() > kFootLift || !(leg.z() > 0.1 * leg.norm())) continue;  // not pushing up
     const double dz = leg.z() / leg.norm();
     const double rest = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
-    K += prs_.leg_stiffness * dz * dz;
-    C += prs_.leg_damping * dz * dz;
+    K += belief_.pseudo_rigid.leg_stiffness * dz * dz;
+    C += belief_.pseudo_rigid.leg_damping * dz * dz;
     s_v += (rest - leg.norm()) * dz;
     f_mean += data_.armed_force[i];
     on.push_back(i);
@@ -117,7 +118,7 @@ double RobotRun::energy_thrust(double t, const ode::Vec& y) {
   if (n == 0) return t;
   f_mean /= static_cast<double>(n);
   ThrustModel m;
-  m.mass = scene_.body.mass;
+  m.mass = belief_.body.mass;
   m.gravity = g_;
   m.stiffness = K;
   m.damping = C;
@@ -125,8 +126,9 @@ double RobotRun::energy_thrust(double t, const ode::Vec& y) {
   m.z_rest = com.z() + s_v / static_cast<double>(n);
   double dz_sum = 0.0;
   for (const Vector3d& d : u) dz_sum += d.z();
-  const double f_max =
-      prs_.actuator_max_force > 0.0 ? prs_.actuator_max_force * dz_sum : 20.0 * m.mass * g_;
+  const double f_max = belief_.pseudo_rigid.actuator_max_force > 0.0
+                           ? belief_.pseudo_rigid.actuator_max_force * dz_sum
+                           : 20.0 * m.mass * g_;
   const double apex = l_ + control_.hop_height(t) + data_.apex_trim;
   const ThrustPlan plan = plan_thrust(m, apex, -0.5 * K * (m.z_rest - m.z_bottom), f_max);
   if (plan.saturated) ++result.run.warnings["thrust_saturated"];

@@ -1,5 +1,6 @@
 #include "sim/robot/pseudo_rigid_robot.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 #include "sim/pseudorigid/builder.hpp"
@@ -159,6 +160,16 @@ void choose_robot_stiffness(const scene::PseudoRigid& p, RobotModel& r) {
 }  // namespace
 
 RobotModel build_robot(const scene::Scene& s) {
+  // The legs are placed for the touchdown the ballistic flight reaches (its time
+  // sqrt(2 dz / g)) and the energy is measured against M g h: neither exists without gravity.
+  if (!(s.gravity > 0.0)) {
+    std::ostringstream g;
+    g << s.gravity;
+    throw std::invalid_argument("gravity " + g.str() +
+                                " m/s^2: the full model needs gravity > 0 (its legs are placed "
+                                "for the touchdown a ballistic flight reaches; without gravity "
+                                "no flight ends)");
+  }
   const scene::PseudoRigid& p = s.pseudo_rigid;
   RobotModel r;
   r.spring_legs = p.legs == scene::PseudoRigid::Legs::kSpring && !s.legs.body_only;

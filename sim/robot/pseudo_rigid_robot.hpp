@@ -39,7 +39,7 @@ struct RobotModel {
 };
 
 /// Builds the mechanism of scene s. Throws std::invalid_argument with a reason
-/// (e.g. a leg too short for its hip, dummy masses heavier than the body).
+/// (e.g. a leg too short for its hip, dummy masses heavier than the body, no gravity).
 RobotModel build_robot(const scene::Scene& s);
 
 }  // namespace pronk::robot

@@ -56,6 +56,14 @@ class RobotRun final : public run::HybridModel {
   }
   /// The run's records at its end (t, y).
   void finish(double t, const ode::Vec& y, const ode::Stepper& stepper);
+  /// A run the fixed-step rule refuses (reduced/run_limits.hpp): `diverged` at t = 0 with
+  /// the reason, the initial sample kept.
+  run::HybridEnd refuse(ode::Stepper& stepper, const ode::Vec& y0, std::string reason) {
+    stepper.reset(sys_, 0.0, y0);
+    start(stepper, y0);
+    end_run(reduced::RunStatus::kDiverged, std::move(reason));
+    return {0.0, y0};
+  }
 
   const ode::OdeSystem& system() const override { return sys_; }
   const ode::SolverOptions& integration_options() const override { return prs_.solver; }
@@ -149,6 +157,10 @@ class RobotRun final : public run::HybridModel {
                                          const std::vector<Vector3d>& u) const;
 
   const scene::Scene& scene_;
+  /// The scene as the controller sees it: the robot's nominal numbers when a robust-design
+  /// scenario perturbed the robot (scene::ControllerModel). The controller layers, the
+  /// stance-time estimate, the thrust law and the leg controllers read it; the dynamics the scene.
+  const scene::Scene belief_;
   const RobotModel& model_;
   const scene::PseudoRigid& prs_;
   const size_t legs_;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <memory>
 
+#include "sim/reduced/run_limits.hpp"
 #include "sim/robot/robot_run.hpp"
 
 namespace pronk::robot {
@@ -49,7 +50,9 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
   auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);
-  const run::HybridEnd end = run::run_hybrid(*robot, *stepper, 0.0, y);
+  const auto too_long = reduced::fixed_step_breach(scene, robot->solver());
+  const run::HybridEnd end = too_long ? robot->refuse(*stepper, y, too_long->reason())
+                                      : run::run_hybrid(*robot, *stepper, 0.0, y);
   robot->finish(end.t, end.y, *stepper);
   return std::move(robot->result);
 }
@@ -58,6 +61,7 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
 
 RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  reduced::require_memory_limits(scene_in.simulation, options.record_trajectory, true);
   RobotModel model = build_robot(scene_in);
   pr::MethodChoice choice;
   const bool automatic = scene_in.pseudo_rigid.solver_auto;

@@ -74,8 +74,10 @@ struct RobotRunOptions {
 };
 
 /// Simulates scene s with the pseudo-rigid robot, whatever s.model says.
-/// Throws std::invalid_argument for a robot that cannot be built (reason given);
-/// numerical trouble ends the run with a status and reason, never NaN.
+/// Throws std::invalid_argument for a robot that cannot be built (reason given) or a run
+/// that would hold more records than reduced/run_limits.hpp allows (the numbers given);
+/// numerical trouble ends the run with a status and reason, never NaN; a fixed step too
+/// long to see every flight ends it `diverged` at t = 0.
 RobotRunResult simulate(const scene::Scene& s, const RobotRunOptions& options = {});
 
 }  // namespace pronk::robot

@@ -21,4 +21,28 @@ void seed_gains(const Body& body, Vec6* kp, Vec6* kd) {
   *kd << 1.5 * m, 1.5 * m, m, 1.5 * I.x(), 1.5 * I.y(), 1.5 * I.z();
 }
 
+ControllerModel controller_model_of(const Scene& s) {
+  if (s.controller_model) return *s.controller_model;
+  ControllerModel c;
+  c.body = s.body;
+  c.pulse_max_force = s.pulse.max_force;
+  c.leg_stiffness = s.pseudo_rigid.leg_stiffness;
+  c.leg_damping = s.pseudo_rigid.leg_damping;
+  c.actuator_max_force = s.pseudo_rigid.actuator_max_force;
+  return c;
+}
+
+Scene controller_view(const Scene& s) {
+  Scene v = s;
+  if (!s.controller_model) return v;
+  const ControllerModel& c = *s.controller_model;
+  v.body = c.body;
+  v.pulse.max_force = c.pulse_max_force;
+  v.pseudo_rigid.leg_stiffness = c.leg_stiffness;
+  v.pseudo_rigid.leg_damping = c.leg_damping;
+  v.pseudo_rigid.actuator_max_force = c.actuator_max_force;
+  v.controller_model.reset();
+  return v;
+}
+
 }  // namespace pronk::scene

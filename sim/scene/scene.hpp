@@ -3,6 +3,7 @@
 // every model simulates. Built by io::load_scene; immutable once built.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -245,6 +246,20 @@ struct Simulation {
   double fall_max_tilt = 1.0471975511965976;  ///< tilt of body z from vertical that is a fall [rad]
 };
 
+/// What the controller assumes about the robot when the robot differs from it: a robust-design
+/// scenario perturbs the robot (the plant) and keeps here the nominal numbers the controller was
+/// designed with. The controller's laws read these (the pulse model's gravity compensation, the
+/// full model's elastic-rebound and energy-thrust laws, its stance-time estimate, its actuator
+/// limit); the dynamics read the scene's own. The inertia is known to the controller only
+/// through its gains, which were made absolute with the nominal numbers before any perturbation.
+struct ControllerModel {
+  Body body;                        ///< nominal mass and inertia
+  double pulse_max_force = 60.0;    ///< pulse model, max_force mode: per-leg force limit [N]
+  double leg_stiffness = 100.0;     ///< full model: leg spring [N/m]
+  double leg_damping = 0.0;         ///< full model: leg damper [N s/m]
+  double actuator_max_force = 0.0;  ///< full model: leg actuator limit [N]; 0 = unlimited
+};
+
 struct Scene {
   std::string name = "scene";
   ModelKind model = ModelKind::kImpulse;
@@ -258,7 +273,17 @@ struct Scene {
   Initial initial;
   std::vector<Disturbance> disturbances;  ///< sorted by time
   Simulation simulation;
+  /// Unset (every scene as loaded): the controller knows the robot's numbers. Set by a
+  /// robust-design scenario that perturbs the robot (optimize/scenario.hpp).
+  std::optional<ControllerModel> controller_model;
 };
+
+/// The numbers the controller assumes: the scene's own, or its controller_model.
+ControllerModel controller_model_of(const Scene& s);
+
+/// The scene as its controller sees it: the scene with controller_model's numbers in place of
+/// the robot's (the scene itself when controller_model is unset).
+Scene controller_view(const Scene& s);
 
 /// Seed gains (A.1): Kp = 1.0 (m, m, 0, Ixx, Iyy, Izz), Kd = 1.5 (m, m, m/1.5, Ixx, Iyy, Izz).
 void seed_gains(const Body& body, Vec6* kp, Vec6* kd);

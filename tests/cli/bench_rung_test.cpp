@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/suite.hpp"
 #include "io/load/scene_loader.hpp"
 
 TEST_CASE("fidelity ladder: the full-model rungs run the full model, not the pulse model",

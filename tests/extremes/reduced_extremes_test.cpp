@@ -176,10 +176,14 @@ TEST_CASE("extreme: 1000-stride runs keep energy and setpoint drift bounded and 
           "[extremes][reduced]") {
   reduced::RunOptions o;
   o.record_trajectory = false;
+  // The run ends at 1000 strides; its duration only has to be long enough. (Read with the
+  // default 5 ms samples, 1e6 s would be 2e8 samples, which the loader refuses.)
+  const std::vector<std::string> long_run = {"/simulation/duration=1e6",
+                                             "/simulation/max_strides=1000",
+                                             "/simulation/sample_interval=0.1"};
   for (const char* name : {"case1_body_only", "case2_legged_impulse", "case3_legged_pulse"}) {
     INFO(name);
-    const auto s =
-        test::load_shipped(name, {"/simulation/duration=1e6", "/simulation/max_strides=1000"});
+    const auto s = test::load_shipped(name, long_run);
     const auto r = reduced::simulate(s, o);
     const auto met = reduced::compute_metrics(s, r);
     REQUIRE(r.status == reduced::RunStatus::kCompleted);
@@ -204,8 +208,7 @@ TEST_CASE("extreme: 1000-stride runs keep energy and setpoint drift bounded and 
   }
   // The untuned 50 %-duty scene is unstable (stride-map radius > 1): 1000 strides expose it
   // as a fall with its time, not as NaN.
-  const auto s = test::load_shipped("legged_pulse_duty50",
-                                    {"/simulation/duration=1e6", "/simulation/max_strides=1000"});
+  const auto s = test::load_shipped("legged_pulse_duty50", long_run);
   const auto r = reduced::simulate(s, o);
   CHECK(r.status == reduced::RunStatus::kFell);
   CHECK(r.reason.find("fell below") != std::string::npos);
@@ -249,5 +252,32 @@ TEST_CASE("extreme: masses 1e-4..1e3 kg in the reduced model", "[extremes][reduc
     CHECK(p.strides.back().peak_leg_force ==
           Approx(f * pn.strides.back().peak_leg_force).epsilon(1e-6));
     CHECK(p.warnings.empty());
+  }
+}
+
+TEST_CASE("extreme: zero gravity in the reduced models lands and reports finite monitors",
+          "[extremes][reduced]") {
+  // Without gravity the flight drift had no scale (m g h = 0): |dE| / 0 was inf, and
+  // `pronk simulate` failed with "non-finite number in output at
+  // /monitors/max_flight_energy_drift". The drift is now relative to the flight's own
+  // (kinetic) energy, which torque-free flight conserves.
+  for (const char* name : {"case1_body_only", "case2_legged_impulse", "case3_legged_pulse"}) {
+    INFO(name);
+    const auto s = test::load_shipped(
+        name, {"/gravity=0", "/initial/position=[0, 0, 1]", "/initial/velocity=[0.3, 0.1, -0.5]",
+               "/initial/angular_velocity=[1, 2, 3]"});
+    const auto r = reduced::simulate(s);
+    INFO(to_string(r.status) << ": " << r.reason);
+    CHECK(ex::all_finite(r));
+    CHECK(r.status != reduced::RunStatus::kDiverged);
+    REQUIRE_FALSE(r.strides.empty());
+    // The CoM coasts at constant velocity: the first touchdown is at (z0 - l) / |vz|.
+    CHECK(r.strides[0].t_touchdown == Approx((1.0 - s.legs.length) / 0.5).epsilon(1e-12));
+    CHECK(r.strides[0].position.x() == Approx(0.3 * r.strides[0].t_touchdown).epsilon(1e-9));
+    CHECK(r.monitors.max_flight_energy_drift > 0.0);  // measured, not zeroed
+    CHECK(r.monitors.max_flight_energy_drift < 1e-8);
+    const auto summary = io::run_summary_json(s, r, reduced::compute_metrics(s, r));
+    CHECK(summary["monitors"]["max_flight_energy_drift"].get<double>() ==
+          r.monitors.max_flight_energy_drift);
   }
 }

@@ -13,7 +13,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/suite.hpp"
 #include "io/load/mechanism_loader.hpp"
 #include "sim/ode/solver.hpp"
 #include "sim/ode/sundials_jacobian.hpp"

@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/suite.hpp"
 #include "io/load/mechanism_loader.hpp"
 #include "sim/ode/verlet.hpp"
 #include "sim/pseudorigid/builder.hpp"

@@ -355,3 +355,20 @@ TEST_CASE("level feet let the running robot recover from a 10 deg roll landing",
   CHECK(level.monitors.max_slip <= 0.01);
   CHECK(level.monitors.energy_drift <= 1e-3 * level.monitors.energy_scale);
 }
+
+TEST_CASE("robot: the full model refuses zero gravity before it builds or runs", "[robot]") {
+  // It used to start and end "non-finite state at t = 0 s" (the leg placement's flight
+  // time sqrt(2 dz / g)), then fail writing a non-finite energy figure.
+  for (const char* body : {"four_masses", "rigid"}) {
+    INFO(body);
+    scene::Scene s = load("pr_running.json", {std::string("/pseudo_rigid/body=\"") + body + "\""});
+    s.gravity = 0.0;
+    const std::string why =
+        "gravity 0 m/s^2: the full model needs gravity > 0 (its legs are placed for the "
+        "touchdown a ballistic flight reaches; without gravity no flight ends)";
+    CHECK_THROWS_WITH(robot::build_robot(s), why);
+    CHECK_THROWS_WITH(robot::simulate(s), why);
+    s.gravity = -9.81;  // out of the loader's range; made in code, refused the same way
+    CHECK_THROWS_WITH(robot::simulate(s), Catch::Matchers::StartsWith("gravity -9.81 m/s^2"));
+  }
+}

@@ -1,8 +1,8 @@
 // The measurements of `pronk bench` (docs/performance.md): work-precision sweeps of every
-// solver on the reference scenes, the pseudo-rigid stiffness sweep, the
-// fidelity ladder and the quad hopper drop that MuJoCo is compared with. Each
-// function runs one group and returns plain records; bench_command.cpp writes
-// them (JSON, CSV, figures) and merges the peers' results.
+// solver on the reference scenes, the pseudo-rigid stiffness sweep, the fidelity ladder and its
+// robustness, and the quad hopper drop that MuJoCo is compared with. Each group runs in its own
+// file of app/bench/ and returns plain records; app/bench/report.cpp writes them (JSON, CSV),
+// app/bench/figures.cpp draws them, and bench_command.cpp merges the peers' results.
 #pragma once
 
 #include <cstdint>
@@ -13,12 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench/measure.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::app::bench {
-
-/// CPU time of the calling thread [s]: robust against other jobs on a shared machine.
-double thread_cpu();
 
 /// How much to measure.
 struct BenchConfig {
@@ -38,9 +36,8 @@ struct WorkPoint {
   double h = 0.0;          ///< fixed step [s]; 0 for adaptive methods
   double t_end = 0.0;      ///< simulated time [s]
   std::string status;      ///< completed, diverged, fell, ...
-  double wall_s = 0.0;     ///< median wall time over the repeats [s]
-  double cpu_s = 0.0;      ///< median CPU time of the running thread [s] (robust on a busy machine)
-  long steps = 0, rejected = 0, rhs = 0, jacobians = 0, lu = 0;
+  Cost cost;               ///< median times; the solver's counters (stride map: steps = map
+                           ///< evaluations)
   /// Errors by name (only those that apply, only for completed runs):
   ///   omega_final   |w(t_end) - w_exact(t_end)| / |w0|, satellite vs the analytic precession
   ///   omega_l2      RMS over the output grid of |w - w_ref| / |w0| vs the tight reference run
@@ -151,13 +148,20 @@ struct FidelityRung {
   std::function<FidelityPoint(const scene::Scene&, const BenchConfig&)> run;
 };
 std::vector<FidelityRung> fidelity_rungs();
+/// The full model's settings of the ladder's rigid and pseudo_rigid rungs (the scene's
+/// "pseudo_rigid" object): force legs, internal springs of 1e6 N/m.
+constexpr const char* kFullModelSettings = R"({"legs": "force", "internal_stiffness": 1e6})";
 
-/// Pseudo-rigid satellite (Ridgely 2001, §4.4.1), k = 1e6 N/m, 20 s: every solver and tolerance.
+/// Pseudo-rigid satellite (the torque-free precessing satellite of
+/// tests/pseudorigid/scenes.hpp), k = 1e6 N/m, 20 s: every solver and tolerance.
 std::vector<WorkPoint> satellite_work_precision(const BenchConfig& c);
 /// The same satellite for k = 1e4 .. 1e8 N/m with RODAS4 (state and body norm) and DOPRI5.
 std::vector<WorkPoint> satellite_stiffness_sweep(const BenchConfig& c);
-/// Reduced legged pulse hopper (case 3): every solver, step and tolerance; and the
-/// stride-map fixed point per tolerance.
+/// The reduced legged pulse hopper (studies/scenes/case3_legged_pulse.json), `duration` [s]
+/// simulated: the scene of the hopper's work-precision and of the fidelity ladder.
+scene::Scene hopper_scene(const BenchConfig& c, double duration);
+/// Reduced legged pulse hopper: every solver, step and tolerance; and the stride-map fixed
+/// point per tolerance.
 std::vector<WorkPoint> hopper_work_precision(const BenchConfig& c);
 /// Fits the orders of the fixed-step methods on `points` (final-state error vs h).
 std::vector<OrderFit> fit_orders(const std::vector<WorkPoint>& points);
@@ -170,11 +174,7 @@ LadderRobustness ladder_robustness(const BenchConfig& c);
 /// mirrors): per tolerance cost, energy-balance drift (energy_error_rel: max drift / drop
 /// energy m g 0.15 m), apex heights. JSON records.
 nlohmann::json quad_hopper_drop(const BenchConfig& c);
-/// The quad hopper drop as a mechanism document (the format of docs/pseudorigid.md), `t_end`
-/// simulated [s].
+/// The quad hopper drop as a mechanism document (docs/pseudorigid.md), `t_end` simulated [s].
 nlohmann::json quad_hopper_mechanism(double t_end);
-
-/// Median of v (v non-empty).
-double median(std::vector<double> v);
 
 }  // namespace pronk::app::bench

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/suite.hpp"
 
 namespace pronk::app {
 

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/suite.hpp"
 
 namespace pronk::app::bench {
 

@@ -1,4 +1,5 @@
-#include "app/bench_headline.hpp"
+// The headline of `pronk bench`: the ratios against the targets of issues 3, 4 and 7.
+#include "app/bench/headline.hpp"
 
 #include <algorithm>
 #include <map>
@@ -21,7 +22,7 @@ const WorkPoint* fastest_within(const std::vector<WorkPoint>& pts, const std::st
     if (p.problem != problem || p.solver != solver || p.stiffness != stiffness) continue;
     auto it = p.errors.find("omega_final");
     if (p.status != "completed" || it == p.errors.end() || it->second > limit) continue;
-    if (!best || p.cpu_s < best->cpu_s) best = &p;
+    if (!best || p.cost.cpu_s < best->cost.cpu_s) best = &p;
   }
   return best;
 }
@@ -38,8 +39,9 @@ const WorkPoint* find_point(const std::vector<WorkPoint>& pts, const std::string
 
 json point_brief(const WorkPoint* p) {
   if (!p) return {{"found", false}};
-  json j = {{"solver", p->solver}, {"variant", p->variant}, {"tol", p->tol}, {"wall_s", p->wall_s},
-            {"cpu_s", p->cpu_s},   {"steps", p->steps},     {"rhs", p->rhs}};
+  json j = {{"solver", p->solver},      {"variant", p->variant},  {"tol", p->tol},
+            {"wall_s", p->cost.wall_s}, {"cpu_s", p->cost.cpu_s}, {"steps", p->cost.steps},
+            {"rhs", p->cost.rhs}};
   if (p->errors.count("omega_final")) j["omega_final"] = p->errors.at("omega_final");
   return j;
 }
@@ -53,14 +55,14 @@ void satellite(const std::vector<WorkPoint>& sat, const json& cvode, json* out) 
   h["satellite"]["omega_error_limit"] = limit;
   h["satellite"]["rodas4"] = point_brief(rodas);
   h["satellite"]["dopri5"] = point_brief(dopri);
-  if (rodas && dopri) h["satellite"]["dopri5_over_rodas4"] = dopri->cpu_s / rodas->cpu_s;
+  if (rodas && dopri) h["satellite"]["dopri5_over_rodas4"] = dopri->cost.cpu_s / rodas->cost.cpu_s;
   h["satellite"]["anchor_cvode_issue3_s"] = 0.35;
-  if (rodas) h["satellite"]["anchor_over_rodas4"] = 0.35 / rodas->cpu_s;
+  if (rodas) h["satellite"]["anchor_over_rodas4"] = 0.35 / rodas->cost.cpu_s;
   // Issue 23: pronk's fastest stiff method (RODAS4, RADAU5, its CVODE backend) within the limit.
   const WorkPoint* best_stiff = nullptr;
   for (const char* solver : {"rodas4", "radau5", "cvode_bdf"}) {
     const WorkPoint* p = fastest_within(sat, "satellite", solver, 1e6, limit);
-    if (p && (!best_stiff || p->cpu_s < best_stiff->cpu_s)) best_stiff = p;
+    if (p && (!best_stiff || p->cost.cpu_s < best_stiff->cost.cpu_s)) best_stiff = p;
   }
   h["satellite"]["best_stiff"] = point_brief(best_stiff);
   h["satellite"]["radau5"] = point_brief(fastest_within(sat, "satellite", "radau5", 1e6, limit));
@@ -70,12 +72,12 @@ void satellite(const std::vector<WorkPoint>& sat, const json& cvode, json* out) 
   const WorkPoint* fastest = nullptr;
   for (const char* solver : {"rodas4", "radau5", "cvode_bdf", "dopri5", "rk4", "verlet"}) {
     const WorkPoint* p = fastest_within(sat, "satellite", solver, 1e6, limit);
-    if (p && (!fastest || p->cpu_s < fastest->cpu_s)) fastest = p;
+    if (p && (!fastest || p->cost.cpu_s < fastest->cost.cpu_s)) fastest = p;
   }
   h["satellite"]["fastest"] = point_brief(fastest);
   if (fastest) {
     h["satellite"]["fastest"]["h"] = fastest->h;
-    h["satellite"]["anchor_over_fastest"] = 0.35 / fastest->cpu_s;
+    h["satellite"]["anchor_over_fastest"] = 0.35 / fastest->cost.cpu_s;
   }
   if (cvode.value("available", false) && rodas) {
     double best = -1;
@@ -89,11 +91,11 @@ void satellite(const std::vector<WorkPoint>& sat, const json& cvode, json* out) 
     }
     if (best > 0) {
       h["satellite"]["cvode"] = best_run;
-      h["satellite"]["cvode_over_rodas4"] = best / rodas->cpu_s;
+      h["satellite"]["cvode_over_rodas4"] = best / rodas->cost.cpu_s;
       h["satellite"]["target_cvode_over_rodas4"] = 10.0;
-      if (fastest) h["satellite"]["cvode_over_fastest"] = best / fastest->cpu_s;
+      if (fastest) h["satellite"]["cvode_over_fastest"] = best / fastest->cost.cpu_s;
       if (best_stiff) {
-        h["satellite"]["cvode_over_best_stiff"] = best / best_stiff->cpu_s;
+        h["satellite"]["cvode_over_best_stiff"] = best / best_stiff->cost.cpu_s;
         h["satellite"]["target_cvode_over_best_stiff"] = 1.0;
       }
     }
@@ -120,10 +122,10 @@ json growth_of(const std::map<double, const WorkPoint*>& by_k) {
     if (model != p->errors.end()) b["model_omega_error"] = model->second;
     if (p->h > 0) b["h"] = p->h;
     g["points"].push_back(b);
-    if (k == 1e4) lo = p->cpu_s;
-    if (k == 1e8) hi = p->cpu_s;
-    mn = mn < 0 ? p->cpu_s : std::min(mn, p->cpu_s);
-    mx = std::max(mx, p->cpu_s);
+    if (k == 1e4) lo = p->cost.cpu_s;
+    if (k == 1e8) hi = p->cost.cpu_s;
+    mn = mn < 0 ? p->cost.cpu_s : std::min(mn, p->cost.cpu_s);
+    mx = std::max(mx, p->cost.cpu_s);
   }
   if (lo > 0 && hi > 0) g["ratio"] = hi / lo;
   if (all && mn > 0) g["max_over_min"] = mx / mn;
@@ -162,10 +164,10 @@ json matched_growth(const std::vector<WorkPoint>& sweep, bool with_model_error) 
       auto it = p.errors.find("omega_final_ref");
       if (p.status != "completed" || it == p.errors.end() || it->second > limit_of(p)) continue;
       const WorkPoint*& c = cheapest[p.stiffness];
-      if (!c || p.cpu_s < c->cpu_s) c = &p;
+      if (!c || p.cost.cpu_s < c->cost.cpu_s) c = &p;
       if (solver != "dopri5" && solver != "verlet") {
         const WorkPoint*& b = best_stiff[p.stiffness];
-        if (!b || p.cpu_s < b->cpu_s) b = &p;
+        if (!b || p.cost.cpu_s < b->cost.cpu_s) b = &p;
       }
     }
     if (cheapest.empty()) continue;
@@ -183,12 +185,12 @@ void stiffness_growth(const std::vector<WorkPoint>& sweep, const json& cvode, js
   for (const std::string v : {"state", "body"}) {
     const WorkPoint* lo = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e4);
     const WorkPoint* hi = find_point(sweep, "satellite_stiffness", "rodas4", v, 1e8);
-    if (lo && hi && lo->cpu_s > 0) {
+    if (lo && hi && lo->cost.cpu_s > 0) {
       h["stiffness_growth"]["rodas4_" + v + "_norm"] = {
-          {"cpu_1e4_s", lo->cpu_s},
-          {"cpu_1e8_s", hi->cpu_s},
-          {"ratio", hi->cpu_s / lo->cpu_s},
-          {"steps_ratio", static_cast<double>(hi->steps) / std::max(1L, lo->steps)}};
+          {"cpu_1e4_s", lo->cost.cpu_s},
+          {"cpu_1e8_s", hi->cost.cpu_s},
+          {"ratio", hi->cost.cpu_s / lo->cost.cpu_s},
+          {"steps_ratio", static_cast<double>(hi->cost.steps) / std::max(1L, lo->cost.steps)}};
     }
   }
   for (const char* solver : {"radau5", "verlet"}) {
@@ -200,12 +202,12 @@ void stiffness_growth(const std::vector<WorkPoint>& sweep, const json& cvode, js
       if (p.stiffness == 1e4) lo = &p;
       if (p.stiffness == 1e8) hi = &p;
     }
-    if (lo && hi && lo->cpu_s > 0) {
+    if (lo && hi && lo->cost.cpu_s > 0) {
       h["stiffness_growth"][solver] = {
-          {"cpu_1e4_s", lo->cpu_s},
-          {"cpu_1e8_s", hi->cpu_s},
-          {"ratio", hi->cpu_s / lo->cpu_s},
-          {"steps_ratio", static_cast<double>(hi->steps) / std::max(1L, lo->steps)}};
+          {"cpu_1e4_s", lo->cost.cpu_s},
+          {"cpu_1e8_s", hi->cost.cpu_s},
+          {"ratio", hi->cost.cpu_s / lo->cost.cpu_s},
+          {"steps_ratio", static_cast<double>(hi->cost.steps) / std::max(1L, lo->cost.steps)}};
     }
   }
   h["stiffness_growth"]["target_ratio"] = 3.0;

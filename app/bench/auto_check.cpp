@@ -1,5 +1,6 @@
-#include "app/bench_auto.hpp"
-#include "app/bench_suite.hpp"
+// `pronk bench`'s check of "method": "auto" against the fastest method at the same accuracy,
+// per scene (auto_check.hpp).
+#include "app/bench/auto_check.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -97,15 +98,11 @@ Outcome run_robot(const CheckScene& s, const json& doc) {
 AutoRun measure(const CheckScene& s, AutoRun r, double accuracy, int repeat, double cap,
                 std::string* choice) {
   const json doc = with_settings(s, r, accuracy);
-  std::vector<double> cpus;
-  Outcome o;
-  for (int i = 0; i < repeat; ++i) {
-    const double c0 = thread_cpu();
-    o = s.robot ? run_robot(s, doc) : run_mechanism(s, doc);
-    cpus.push_back(thread_cpu() - c0);
-    if (cpus.front() > cap || o.status != "completed") break;
-  }
-  r.cpu_s = median(cpus);
+  const Timed<Outcome> run = timed(
+      repeat, [&] { return s.robot ? run_robot(s, doc) : run_mechanism(s, doc); },
+      [&](const Outcome& o, double cpu) { return cpu > cap || o.status != "completed"; });
+  const Outcome& o = run.result;
+  r.cpu_s = run.cpu_s;
   r.status = o.status;
   r.steps = o.steps;
   r.rejected = o.rejected;
