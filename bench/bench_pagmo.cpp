@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_suite.hpp"
+#include "app/bench/measure.hpp"
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
 #include "optimize/study.hpp"

@@ -1,8 +1,5 @@
 #include "optimize/pagmo_driver.hpp"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <pagmo/algorithm.hpp>
 #include <pagmo/bfe.hpp>
 #include <pagmo/population.hpp>
@@ -10,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <exception>
 #include <sstream>
 #include <stdexcept>
@@ -30,27 +26,6 @@ using detail::EvaluationTracker;
 using detail::PagmoBridge;
 using detail::PagmoSettings;
 using detail::PagmoStop;
-
-/// Test hook for --resume after kill -9: with PRONK_TEST_KILL_AFTER_EVALUATIONS=N in the
-/// environment the process kills itself (SIGKILL) right after the observer (the study
-/// journal) has taken the N-th evaluation, so a test can stop a run at an exact point.
-class KillSwitch final : public EvaluationObserver {
- public:
-  explicit KillSwitch(EvaluationObserver* next) : next_(next) {
-    const char* v = std::getenv("PRONK_TEST_KILL_AFTER_EVALUATIONS");
-    if (v != nullptr) after_ = std::atol(v);
-  }
-  bool armed() const { return after_ > 0; }
-  void on_evaluation(long index, const std::vector<double>& x, const ProblemEvaluation& e,
-                     const char* purpose) override {
-    if (next_ != nullptr) next_->on_evaluation(index, x, e, purpose);
-    if (index + 1 >= after_) ::kill(::getpid(), SIGKILL);
-  }
-
- private:
-  EvaluationObserver* next_;
-  long after_ = 0;
-};
 
 /// How the generations ended.
 struct PagmoRun {
@@ -211,8 +186,7 @@ OptimizerResult run_pagmo(const Problem& problem, const OptimizerOptions& option
   OptimizerResult result;
   result.library = "pagmo";
   result.algorithm = options.algorithm;
-  KillSwitch kill(observer);
-  EvaluationTracker tracker(problem, options, kill.armed() ? &kill : observer);
+  EvaluationTracker tracker(problem, options, observer);
   try {
     PagmoSettings s;
     std::string error;

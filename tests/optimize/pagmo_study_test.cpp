@@ -1,6 +1,6 @@
 // pagmo in a study (the shipped example, studies/study2_pagmo_cmaes.json): bad optimizer
 // sections are input errors naming the pointer (exit 2), the journal is the same bytes
-// with 1 and 2 threads, a run killed with SIGKILL at an exact evaluation resumes to the
+// with 1 and 2 threads, a run killed at a crash point (as kill -9 would) resumes to the
 // uninterrupted run's journal and design, and the design reproduces.
 #include <catch2/catch.hpp>
 
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/load/input_error.hpp"
+#include "io/write/crash_point.hpp"
 #include "optimize/study.hpp"
 #include "tests/cli/cli_support.hpp"
 
@@ -113,30 +114,43 @@ TEST_CASE("pagmo studies: 1 and 2 threads write the same journal; kill -9 and --
   CHECK(journal == slurp(d / "t2/journal.jsonl"));
   CHECK(std::count(journal.begin(), journal.end(), '\n') == 41);  // header + 5 populations of 8
 
-  // Killed right after the 13th evaluation was journaled (inside the second population).
-  ::setenv("PRONK_TEST_KILL_AFTER_EVALUATIONS", "13", 1);
-  const Run killed = optimize(d, "k", "2");
-  ::unsetenv("PRONK_TEST_KILL_AFTER_EVALUATIONS");
-  CHECK(killed.code == -1);  // died by the signal
-  const std::string partial = slurp(d / "k/journal.jsonl");
-  CHECK(std::count(partial.begin(), partial.end(), '\n') == 14);
-  CHECK(journal.rfind(partial, 0) == 0);  // a prefix of the uninterrupted journal
-
-  const Run resumed = optimize(d, "k", "1", true);
-  INFO(resumed.err);
-  REQUIRE(resumed.code == 0);
-  CHECK(slurp(d / "k/journal.jsonl") == journal);
+  // Killed at crash points (PRONK_CRASH_AT, io/write/crash_point.hpp: std::_Exit as kill -9
+  // would, some with half a journal line written): inside the second population, inside the
+  // fourth, and at the last point (the result files); each run resumed on 1 thread ends with
+  // the uninterrupted run's journal and design.
+  ::setenv("PRONK_CRASH_AT", "0", 1);
+  const Run counted = optimize(d, "count", "2");
+  ::unsetenv("PRONK_CRASH_AT");
+  REQUIRE(counted.code == 0);
+  const long points = std::stol(counted.err.substr(counted.err.rfind(": ") + 2));
+  REQUIRE(points > 41);  // at least one per journal line
   const json a = json::parse(slurp(d / "t1/design.json"));
-  const json b = json::parse(slurp(d / "k/design.json"));
-  for (const char* key : {"unit", "parameters", "cost", "constraints", "metrics", "validation"}) {
-    INFO(key);
-    CHECK(a.at(key) == b.at(key));
+  for (const long n : {15L, 33L, points}) {
+    INFO("PRONK_CRASH_AT=" << n);
+    const std::string out = "k" + std::to_string(n);
+    ::setenv("PRONK_CRASH_AT", std::to_string(n).c_str(), 1);
+    const Run killed = optimize(d, out, "2");
+    ::unsetenv("PRONK_CRASH_AT");
+    CHECK(killed.code == pronk::io::kCrashExitCode);
+    const std::string partial = slurp(d / (out + "/journal.jsonl"));
+    const std::string whole_lines = partial.substr(0, partial.rfind('\n') + 1);
+    CHECK(journal.rfind(whole_lines, 0) == 0);  // a prefix of the uninterrupted journal
+
+    const Run resumed = optimize(d, out, "1", true);
+    INFO(resumed.err);
+    REQUIRE(resumed.code == 0);
+    CHECK(slurp(d / (out + "/journal.jsonl")) == journal);
+    const json b = json::parse(slurp(d / (out + "/design.json")));
+    for (const char* key : {"unit", "parameters", "cost", "constraints", "metrics", "validation"}) {
+      INFO(key);
+      CHECK(a.at(key) == b.at(key));
+    }
   }
   CHECK(a.at("optimizer").at("library") == "pagmo");
   CHECK(a.at("optimizer").at("evaluations") == 40);
 
   // The design reproduces bit for bit on this build.
-  const Run rep = cli_support::pronk(d, {"reproduce", d / "k/design.json"});
+  const Run rep = cli_support::pronk(d, {"reproduce", d / "k15/design.json"});
   INFO(rep.out << rep.err);
   CHECK(rep.code == 0);
 }
