@@ -14,9 +14,10 @@ namespace pronk::optimize {
 
 /// How to optimize. Validated when a study is loaded.
 struct OptimizerOptions {
-  std::string library = "nlopt";  ///< "nlopt" or "ipopt"
+  std::string library = "nlopt";  ///< "nlopt", "ipopt" or "pagmo"
   std::string algorithm =
-      "LN_BOBYQA";  ///< NLopt algorithm name (e.g. "LN_COBYLA", "GN_ISRES", "G_MLSL_LDS")
+      "LN_BOBYQA";  ///< NLopt algorithm name (e.g. "LN_COBYLA", "GN_ISRES", "G_MLSL_LDS"),
+                    ///< or a pagmo one ("cmaes", "xnes", "de", "sade", "de1220", "pso_gen")
   std::string local_algorithm = "LN_BOBYQA";  ///< local optimizer for multistart (MLSL) / AUGLAG
   long max_evaluations = 200;   ///< objective evaluations (incl. finite-difference points)
   double max_time = 0.0;        ///< wall-clock limit [s]; 0 = none
@@ -28,6 +29,9 @@ struct OptimizerOptions {
   double penalty_weight = 1e3;
   /// Ipopt options passed through (string, integer or number values).
   nlohmann::json ipopt_options = nlohmann::json::object();
+  /// pagmo options: population, generations, ftol, xtol and the algorithm's own
+  /// (optimize/pagmo_driver.hpp).
+  nlohmann::json pagmo_options = nlohmann::json::object();
   /// Relative finite-difference step for gradient-based drivers. Per
   /// variable: step_j = fd_step * (upper_j - lower_j) when both bounds are
   /// finite, else fd_step * max(1, |x_j|); one-sided inward at a bound.

@@ -5,6 +5,7 @@
 #include "optimize/ipopt_driver.hpp"
 #include "optimize/nlopt_driver.hpp"
 #include "optimize/optimizer.hpp"
+#include "optimize/pagmo_driver.hpp"
 
 namespace pronk::optimize {
 
@@ -42,8 +43,8 @@ std::string_view to_string(OptimizerStatus s) {
 }
 
 bool OptimizerOptions::validate(std::string* error) const {
-  if (library != "nlopt" && library != "ipopt")
-    return fail(error, "library", library, "expected \"nlopt\" or \"ipopt\"");
+  if (library != "nlopt" && library != "ipopt" && library != "pagmo")
+    return fail(error, "library", library, "expected \"nlopt\", \"ipopt\" or \"pagmo\"");
   if (library == "nlopt") {
     if (!is_nlopt_algorithm(algorithm))
       return fail(error, "algorithm", algorithm,
@@ -76,6 +77,9 @@ bool OptimizerOptions::validate(std::string* error) const {
   if (!ipopt_options.is_object())
     return fail(error, "ipopt_options", ipopt_options.dump(), "expected an object");
   if (library == "ipopt" && !validate_ipopt_options(ipopt_options, error)) return false;
+  if (library == "pagmo" &&
+      !validate_pagmo_options(algorithm, pagmo_options, max_evaluations, error))
+    return false;
   return true;
 }
 

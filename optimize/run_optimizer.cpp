@@ -5,6 +5,7 @@
 #include "optimize/ipopt_driver.hpp"
 #include "optimize/nlopt_driver.hpp"
 #include "optimize/optimizer.hpp"
+#include "optimize/pagmo_driver.hpp"
 
 namespace pronk::optimize {
 
@@ -60,6 +61,7 @@ OptimizerResult run_optimizer(const Problem& problem, const OptimizerOptions& op
     return result;
   }
   if (options.library == "ipopt") return run_ipopt(problem, options, observer);
+  if (options.library == "pagmo") return run_pagmo(problem, options, observer);
   return run_nlopt(problem, options, observer);
 }
 

@@ -270,10 +270,38 @@ void parse_study_objective(io::JsonReader& r, const std::string& file, scene::Mo
     check_metric("/constraints/" + std::to_string(i) + "/metric", ec->constraints[i].metric);
 }
 
+// An OptimizerOptions::validate error ("field: value: rule") as an InputError at
+// /optimizer/<field>; a rule "expected ..." becomes what was expected.
+io::InputError optimizer_error(const std::string& file, const std::string& err) {
+  const std::size_t colon = err.find(": ");
+  std::string field = err.substr(0, colon);
+  if (field.rfind("ipopt_options", 0) == 0) field.replace(0, 13, "options");  // the JSON key
+  const std::string pointer = "/optimizer/" + field;
+  const std::size_t rule = colon == std::string::npos ? colon : err.find(": expected ", colon);
+  if (rule == std::string::npos)
+    return io::InputError(file, pointer, "valid optimizer options", err);
+  return io::InputError(file, pointer, err.substr(rule + 11),
+                        err.substr(colon + 2, rule - colon - 2));
+}
+
 void parse_study_optimizer(io::JsonReader o, const json& doc, const std::string& file,
                            OptimizerOptions* op) {
-  op->library = o.choice_or("library", "nlopt", {"nlopt", "ipopt"});
-  op->algorithm = o.string_or("algorithm", op->library == "ipopt" ? "ipopt" : "LN_BOBYQA");
+  op->library = o.choice_or("library", "nlopt", {"nlopt", "ipopt", "pagmo"});
+  const bool pagmo = op->library == "pagmo";
+  op->algorithm = o.string_or("algorithm", op->library == "ipopt" ? "ipopt"
+                                           : pagmo                ? "cmaes"
+                                                                  : "LN_BOBYQA");
+  // NLopt's and Ipopt's stopping rules and derivatives mean nothing to pagmo: refuse them
+  // rather than ignore them.
+  for (const char* key : {"local_algorithm", "ftol_rel", "xtol_rel", "fd_step"}) {
+    if (pagmo && o.has(key)) {
+      throw o.error(key,
+                    "no \"" + std::string(key) +
+                        "\" with library pagmo (it takes no local algorithm and no derivatives; "
+                        "its tolerances are options/ftol and options/xtol)",
+                    io::describe(doc.at("optimizer").at(key)));
+    }
+  }
   op->local_algorithm = o.string_or("local_algorithm", op->local_algorithm);
   op->max_evaluations = o.integer_or("max_evaluations", op->max_evaluations, 1, 100000000);
   op->max_time = o.number_or("max_time", 0.0, 0.0, 1e9);
@@ -286,17 +314,15 @@ void parse_study_optimizer(io::JsonReader o, const json& doc, const std::string&
     const json& opts = doc.at("optimizer").at("options");
     o.optional("options");
     if (!opts.is_object())
-      throw o.error("options", "an object of Ipopt options", io::describe(opts));
-    op->ipopt_options = opts;
+      throw o.error("options", pagmo ? "an object of pagmo options" : "an object of Ipopt options",
+                    io::describe(opts));
+    (pagmo ? op->pagmo_options : op->ipopt_options) = opts;
   } else {
     o.optional("options");
   }
   o.finish();
   std::string err;
-  if (!op->validate(&err)) {
-    const std::string field = err.substr(0, err.find(':'));
-    throw io::InputError(file, "/optimizer/" + field, "valid optimizer options", err);
-  }
+  if (!op->validate(&err)) throw optimizer_error(file, err);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
       libcli11-dev nlohmann-json3-dev catch2 gnuplot-nox libopenmpi-dev openmpi-bin
-      libsundials-dev libsuitesparse-dev)
+      libsundials-dev libsuitesparse-dev libpagmo-dev)
 # The Python module (pybind11 over Debian's python3) and what its tests and examples use.
 pkgs+=(pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy python3-matplotlib
        python3-optuna)

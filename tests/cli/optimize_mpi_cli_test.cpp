@@ -1,7 +1,7 @@
 // `mpirun -np 2 pronk optimize`: the evaluations' scenario runs spread over the
 // ranks give the threaded run's journal byte for byte (derivative-free NLopt,
-// Ipopt's finite-difference batches, a staged study), --resume replays under MPI,
-// and bad input is reported once by rank 0.
+// Ipopt's finite-difference batches, a pagmo population, a staged study), --resume
+// replays under MPI, and bad input is reported once by rank 0.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -92,6 +92,17 @@ TEST_CASE("mpirun -np 2 pronk optimize: Ipopt's finite-difference batches over t
   json study = small_study1(30);
   study["parameters"] = json::array({study["parameters"][0], study["parameters"][2]});
   study["optimizer"] = {{"library", "ipopt"}, {"max_evaluations", 30}};
+  check_same_as_threads(d, study, {"journal.jsonl", "history.csv"});
+}
+
+TEST_CASE("mpirun -np 2 pronk optimize: a pagmo population over the ranks",
+          "[cli][optimize][mpi][pagmo]") {
+  cli_support::TempDir d("optimize_mpi_pagmo");
+  json study = small_study1(30);
+  study["optimizer"] = {{"library", "pagmo"},
+                        {"algorithm", "cmaes"},
+                        {"max_evaluations", 30},
+                        {"options", {{"population", 10}}}};
   check_same_as_threads(d, study, {"journal.jsonl", "history.csv"});
 }
 

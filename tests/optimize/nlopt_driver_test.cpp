@@ -99,7 +99,7 @@ TEST_CASE("NLopt algorithm names are NLopt's own", "[optimize][nlopt]") {
   o = OptimizerOptions{};
   o.library = "ceres";
   CHECK_FALSE(o.validate(&error));
-  CHECK(error == "library: ceres: expected \"nlopt\" or \"ipopt\"");
+  CHECK(error == "library: ceres: expected \"nlopt\", \"ipopt\" or \"pagmo\"");
 
   const auto p = shifted_quadratic();
   o = nlopt_options("NOT_AN_ALGORITHM", 10);
