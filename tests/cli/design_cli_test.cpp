@@ -86,3 +86,18 @@ TEST_CASE("pronk design: a scene without legs and bad options are exit 2", "[cli
   check_bad_input(pronk(d, {"design", tripod(), "--out", "o", "--perturb", "1.5,0,0"}),
                   "--perturb: /: expected a valid design option");
 }
+
+TEST_CASE("pronk design --optimizer cmaes runs the full stage on pagmo's CMA-ES", "[cli][design]") {
+  TempDir d("design_cmaes");
+  std::vector<std::string> args = small("c", "pseudo_rigid");
+  for (const char* a : {"--optimizer", "cmaes", "--population", "5", "--budget", "10"})
+    args.push_back(a);
+  REQUIRE(pronk(d, args).code == 0);
+  const auto design = nlohmann::json::parse(slurp(d / "c/stages/2_full/design.json"));
+  CHECK(design.at("optimizer").at("library") == "pagmo");
+  CHECK(design.at("optimizer").at("algorithm") == "cmaes");
+  CHECK(design.at("optimizer").at("evaluations").get<long>() <= 10);
+  check_bad_input(pronk(d, {"design", tripod(), "--out", "o", "--optimizer", "cmaes",
+                            "--population", "4"}),
+                  "command line: /: expected options");
+}
