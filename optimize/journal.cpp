@@ -12,12 +12,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "optimize/scenario.hpp"
-#include "optimize/study.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/crash_point.hpp"
+#include "optimize/scenario.hpp"
+#include "optimize/study.hpp"
 
 namespace pronk::optimize {
 

@@ -6,12 +6,12 @@
 #include <set>
 #include <sstream>
 
-#include "optimize/output_lock.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/run_output.hpp"
+#include "optimize/output_lock.hpp"
 #include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::optimize {

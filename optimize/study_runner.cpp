@@ -11,11 +11,6 @@
 #include <optional>
 #include <sstream>
 
-#include "optimize/journal.hpp"
-#include "optimize/journal_check.hpp"
-#include "optimize/output_lock.hpp"
-#include "optimize/reproduction_record.hpp"
-#include "optimize/study_history.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
@@ -23,6 +18,11 @@
 #include "io/write/plot.hpp"
 #include "io/write/run_output.hpp"
 #include "io/write/simulation_output.hpp"
+#include "optimize/journal.hpp"
+#include "optimize/journal_check.hpp"
+#include "optimize/output_lock.hpp"
+#include "optimize/reproduction_record.hpp"
+#include "optimize/study_history.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {

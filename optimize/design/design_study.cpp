@@ -16,8 +16,6 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The scene with the design's overrides (each "/ptr=value", as a study writes them) applied.
 json with_overrides(json doc, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) io::apply_override(doc, o);
@@ -119,39 +117,38 @@ void body_gains(const scene::Scene& s, json* params, std::vector<std::string>* p
 // stance spring, stance gains per unit inertia around study 3's (robot_scaling.hpp).
 void full_model_settings(const Derived& d, json* params, std::vector<std::string>* full) {
   const scene::Scene& s = d.full;
+  auto add = [&](json p) {
+    full->push_back(p.at("name"));
+    params->push_back(std::move(p));
+  };
   const double k_lo = 0.5 * scene::leg_stiffness_for_stance(s, d.stance_hi);
   const double k_hi = 2.0 * scene::leg_stiffness_for_stance(s, d.stance_lo);
   // No "initial": the full stage starts it from the pulse stage's stance time.
-  params->push_back({{"name", "leg_stiffness"},
-                     {"pointer", "/pseudo_rigid/leg_stiffness"},
-                     {"lower", k_lo},
-                     {"upper", k_hi},
-                     {"log", true}});
+  add({{"name", "leg_stiffness"},
+       {"pointer", "/pseudo_rigid/leg_stiffness"},
+       {"lower", k_lo},
+       {"upper", k_hi},
+       {"log", true}});
   const double n = static_cast<double>(s.legs.hips.size());
   const double k0 = scene::leg_stiffness_for_stance(s, d.stance0);
   const double critical = 2.0 * std::sqrt(k0 * s.body.mass / n);  // per leg [N s/m]
-  params->push_back(parameter("leg_damping", "/pseudo_rigid/leg_damping", 0.05 * critical,
-                              0.5 * critical, true, 0.2 * critical));
+  add(parameter("leg_damping", "/pseudo_rigid/leg_damping", 0.05 * critical, 0.5 * critical, true,
+                0.2 * critical));
   const double inertia[2] = {s.body.inertia(0, 0), s.body.inertia(1, 1)};
   const char* axis[2] = {"roll", "pitch"};
   const auto& p = s.pseudo_rigid;
   for (int i = 0; i < 2; ++i) {
     const std::string at = "/pseudo_rigid/stance_attitude/";
-    params->push_back(parameter(std::string("stance_kp_") + axis[i], at + "kp/" + std::to_string(i),
-                                0.0, 3000.0 * inertia[i], false, p.stance_kp[i]));
-    params->push_back(parameter(std::string("stance_kd_") + axis[i], at + "kd/" + std::to_string(i),
-                                100.0 * inertia[i], 1600.0 * inertia[i], false, p.stance_kd[i]));
+    add(parameter(std::string("stance_kp_") + axis[i], at + "kp/" + std::to_string(i), 0.0,
+                  3000.0 * inertia[i], false, p.stance_kp[i]));
+    add(parameter(std::string("stance_kd_") + axis[i], at + "kd/" + std::to_string(i),
+                  100.0 * inertia[i], 1600.0 * inertia[i], false, p.stance_kd[i]));
   }
-  params->push_back(
-      parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
-  params->push_back(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8,
-                              false, p.position_trim_gain));
-  params->push_back(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0,
-                              false, p.attitude_trim_gain));
-  for (const auto& q : *params) {
-    const std::string ptr = q["pointer"];
-    if (ptr.rfind("/pseudo_rigid/", 0) == 0) full->push_back(q["name"]);
-  }
+  add(parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
+  add(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8, false,
+                p.position_trim_gain));
+  add(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0, false,
+                p.attitude_trim_gain));
 }
 
 // The robot's own numbers drawn per trial: the plant, not the controller's model of it. The
@@ -225,13 +222,14 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
   params.push_back(
       parameter("pulse_duration", "/pulse/duration", d.stance_lo, d.stance_hi, false, d.stance0));
   body_gains(d.full, &params, &pulse_names, &full_names);
-  if (!full_model)
-    pulse_names.insert(pulse_names.begin() + 1, full_names.begin(), full_names.end());
-  if (!full_model) {
+  if (full_model) {
+    full_model_settings(d, &params, &full_names);
+  } else {
+    // The pulse model last: its one stage tunes every body gain (full_names holds them all).
+    pulse_names = full_names;
+    pulse_names.push_back("pulse_duration");
     std::sort(pulse_names.begin(), pulse_names.end());
-    pulse_names.erase(std::unique(pulse_names.begin(), pulse_names.end()), pulse_names.end());
   }
-  if (full_model) full_model_settings(d, &params, &full_names);
 
   const long seed = o.seed;
   json stages = json::array();
