@@ -120,6 +120,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
   p.position_trim_gain = r.number_or("position_trim_gain", p.position_trim_gain, 0.0, 2.0);
   p.attitude_trim_gain = r.number_or("attitude_trim_gain", p.attitude_trim_gain, 0.0, 2.0);
+  p.placement_trim_gain = r.number_or("placement_trim_gain", p.placement_trim_gain, 0.0, 2.0);
   p.thrust = r.choice_or("thrust", std::string(p.thrust == Thrust::kEnergy ? "energy" : "impulse"),
                          {"impulse", "energy"}) == "energy"
                  ? Thrust::kEnergy
@@ -210,6 +211,8 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
     j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
     for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);
   }
+  // Absent when off: the scenes and studies recorded before it existed keep their hash.
+  if (p.placement_trim_gain > 0.0) j["placement_trim_gain"] = p.placement_trim_gain;
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
   return j;

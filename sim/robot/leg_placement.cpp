@@ -53,6 +53,10 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
   return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
 }
 
+double free_leg_response(const Vector3d& P, double stance, double leg, double mass) {
+  return std::clamp(1.0 - stance * P.norm() / (4.0 * mass * leg), 0.1, 1.0);
+}
+
 /// Hip placement (hip_rotation): plan the stance at the predicted (ballistic) touchdown and
 /// turn each leg in the air along its total impulse; the foot moves with the leg (its
 /// energy change is hip work).
@@ -95,7 +99,7 @@ void RobotRun::place_legs(double t, ode::Vec& y) {
 /// predicted ballistic touchdown; s becomes the predicted touchdown state, R_td the body
 /// attitude then (after the flight at constant angular velocity).
 std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::BodyState& s,
-                                          Matrix3d& R_td) const {
+                                          Matrix3d& R_td) {
   const double tf = std::sqrt(2.0 * (s.position.z() - l_) / g_);
   const Vector3d w_world = msys_.body_omega(model_.body, y);
   R_td = msys_.frames(y)[model_.body].rotation;
@@ -111,12 +115,18 @@ std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::
   // the world and turned into the body frame the body will have at touchdown.
   Vector3d P = pred.command.P_world;
   P.z() += total_mass_ * g_ * data_.spring_stance;
+  data_.placed = P.head<2>();
+  data_.has_placed = true;
+  data_.placed_response =
+      free_leg_response(P, data_.spring_stance, model_.rest_length[0], total_mass_);
+  P.head<2>() += data_.placement_trim;
   // The hips' mean speed over the stance: the CoM's plus half the change asked.
   const Vector3d v_mean = s.velocity + 0.5 * pred.command.P_world / total_mass_;
   const bool held_roll = prs_.stance_kp[0] > 0.0 || prs_.stance_kd[0] > 0.0;
   // Desired takeoff velocity: lateral as the controller asks, vertical as the
   // springs return it (the touchdown speed).
   Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass_;
+  v_takeoff.head<2>() += data_.placement_trim / total_mass_;
   v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
   const Vector3d d = free_leg_direction(P, v_mean, data_.spring_stance, model_.rest_length[0],
                                         prs_.max_leg_angle, held_roll, v_takeoff);

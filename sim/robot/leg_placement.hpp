@@ -36,4 +36,10 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
 Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
                             double max_angle, bool held_roll, const Vector3d& v_takeoff);
 
+/// How the horizontal impulse a placed leg delivers answers a change of the impulse it was
+/// placed for, linearised: the foot moved by -leg dP / |P| changes the impulse by dP / (1 - c),
+/// c = T_s |P| / (4 m leg), because the CoM's own speed-up moves it further over the foot
+/// (the neutral point's feedback on itself). Returns 1 - c, kept within [0.1, 1] [-].
+double free_leg_response(const Vector3d& P, double stance, double leg, double mass);
+
 }  // namespace pronk::robot::detail

@@ -185,6 +185,21 @@ void RobotRun::on_apex(double t, ode::Vec& y) {
                                   prs_.hop_trim_max * v_want);
     }
     current_.P_delivered = delivered(t, y);
+    if (data_.has_placed && prs_.placement_trim_gain > 0.0) {
+      // What the placed legs missed, asked for on top at the next placements.
+      const double cap = total_mass_ * std::sqrt(2.0 * g_ * h);
+      Eigen::Vector2d& b = data_.placement_trim;
+      // Along the setpoint velocity only: the stance's travel is what the placement models
+      // worst; across it the lateral loop's own placement holds.
+      const Eigen::Vector2d v_d = scene_.controller.setpoint_velocity.head<2>();
+      if (v_d.norm() > 1e-9) {
+        const Eigen::Vector2d u = v_d.normalized();
+        b += prs_.placement_trim_gain * data_.placed_response *
+             u.dot(data_.placed - current_.P_delivered.head<2>()) * u;
+      }
+      if (b.norm() > cap) b *= cap / b.norm();
+    }
+    data_.has_placed = false;
   }
   if (!run_.stance && model_.spring_legs) {
     // Foot vibration on the leg springs (free fall: the springs would be at rest).

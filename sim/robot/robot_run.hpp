@@ -152,7 +152,7 @@ class RobotRun final : public run::HybridModel {
   void apply_disturbance(const scene::Disturbance& d, ode::Vec& y);
   void place_legs(double t, ode::Vec& y);
   std::vector<Vector3d> placement(double t, const ode::Vec& y, control::BodyState& s,
-                                  Matrix3d& R_td) const;
+                                  Matrix3d& R_td);
   std::vector<double> level_rest_lengths(const control::BodyState& s, const Matrix3d& R_td,
                                          const std::vector<Vector3d>& u) const;
 

@@ -52,6 +52,13 @@ struct RunData {
   double apex_trim = 0.0;  ///< hop-height feedback of the energy thrust: extra apex asked [m]
   Vector3d position_trim = Vector3d::Zero();  ///< integral action: position offset seen [m]
   Eigen::Vector2d attitude_trim = Eigen::Vector2d::Zero();  ///< integral action: roll, pitch [rad]
+  /// Leg placement's integral action: horizontal impulse added to the placement's request
+  /// (world x, y) [N s]; placed: the horizontal request the legs were placed for, this
+  /// stride (valid when has_placed) [N s].
+  Eigen::Vector2d placement_trim = Eigen::Vector2d::Zero();
+  Eigen::Vector2d placed = Eigen::Vector2d::Zero();
+  bool has_placed = false;
+  double placed_response = 1.0;  ///< the placement's 1 - c (free_leg_response) [-]
 };
 
 }  // namespace pronk::robot::detail

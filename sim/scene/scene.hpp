@@ -187,6 +187,15 @@ struct PseudoRigid {
   /// placement and stance feedback under a moving setpoint) that the body controller's PD
   /// would balance with a standing tilt is learnt away; 0 = off [-].
   double attitude_trim_gain = 1.0;
+  /// Leg placement's integral action, per stride (spring legs with hip_rotation): after each
+  /// stance the horizontal impulse the placed legs missed (requested at the placement minus
+  /// delivered from touchdown to apex) times this gain is added to the impulse the next
+  /// placements lean the legs for (within the body's takeoff momentum m sqrt(2 g h)). The
+  /// neutral-point placement delivers a horizontal impulse that changes by several N s per
+  /// centimetre of foot position, so a millimetre of model error (leg compression, the
+  /// thrust's timing, foot mass) is a steady push the PD and the position trim fight; this
+  /// learns it away. 0 = off [-].
+  double placement_trim_gain = 0.0;
   Thrust thrust = Thrust::kEnergy;
   /// Energy blow-up: a run whose energy balance drifts by more than this times the run's
   /// energy scale ends diverged. The mechanisms' setting (pseudorigid::SimulationOptions::

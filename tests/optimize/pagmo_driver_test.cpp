@@ -28,7 +28,7 @@ struct PagmoCase {
 };
 
 /// The algorithms the driver offers, with a budget that reaches the tolerance.
-const std::vector<PagmoCase> kAlgorithms = {
+const std::vector<PagmoCase> kPagmoAlgorithms = {
     {"cmaes", 12, 3000, 1e-4}, {"xnes", 12, 3000, 1e-4},   {"de", 20, 4000, 1e-3},
     {"sade", 20, 4000, 1e-3},  {"de1220", 20, 4000, 1e-3}, {"pso_gen", 20, 4000, 1e-2},
 };
@@ -68,7 +68,7 @@ CountingProblem counting_quadratic(int n) {
 }
 
 /// The observer saw every evaluation once, in index order, and the result's best is one of them.
-void check_observed(const Recorder& rec, const OptimizerResult& r) {
+void check_pagmo_observed(const Recorder& rec, const OptimizerResult& r) {
   REQUIRE(static_cast<long>(rec.seen.size()) == r.evaluations);
   for (std::size_t i = 0; i < rec.seen.size(); ++i) REQUIRE(rec.seen[i].index == long(i));
   REQUIRE(r.best_index >= 0);
@@ -88,7 +88,7 @@ std::string validation_error(const std::string& algorithm, const json& options,
 
 TEST_CASE("pagmo algorithms find the minima of the shifted quadratic and of Rosenbrock",
           "[optimize][pagmo]") {
-  for (const auto& c : kAlgorithms) {
+  for (const auto& c : kPagmoAlgorithms) {
     SECTION(c.name) {
       const auto o = pagmo_options(c.name, {{"population", c.population}}, c.budget);
       const auto q = shifted_quadratic(3);
@@ -100,7 +100,7 @@ TEST_CASE("pagmo algorithms find the minima of the shifted quadratic and of Rose
       CHECK(rq.best_feasible);
       CHECK(distance(rq.best_x, {1.0, -0.5, 0.25}) < c.tolerance);
       CHECK(rq.best_cost < c.tolerance * c.tolerance);
-      check_observed(rec, rq);
+      check_pagmo_observed(rec, rq);
       CHECK(rec.seen.front().x == q.initial_point());  // the start is in the first population
 
       const OptimizerResult rr = run_optimizer(rosenbrock(), o);
@@ -131,7 +131,7 @@ TEST_CASE("pagmo: constraints become the quadratic penalty and the result says s
 
 TEST_CASE("pagmo: every generation is one batch and the budget holds whole generations",
           "[optimize][pagmo]") {
-  for (const auto& c : kAlgorithms) {
+  for (const auto& c : kPagmoAlgorithms) {
     SECTION(c.name) {
       const auto p = counting_quadratic(4);
       const OptimizerResult r = run_optimizer(p, pagmo_options(c.name, {{"population", 10}}, 95));
@@ -166,7 +166,7 @@ TEST_CASE("pagmo: every generation is one batch and the budget holds whole gener
 
 TEST_CASE("pagmo: the same evaluations whatever the thread count; the seed changes them",
           "[optimize][pagmo][determinism]") {
-  for (const auto& c : kAlgorithms) {
+  for (const auto& c : kPagmoAlgorithms) {
     SECTION(c.name) {
       auto run = [&](int threads, unsigned long long seed) {
         auto p = shifted_quadratic(3);
@@ -217,7 +217,7 @@ TEST_CASE("pagmo: xtol and ftol end a run as converged; the stop flag ends it as
       const auto r = run_optimizer(shifted_quadratic(2), o, &rec);
       CHECK(r.status == OptimizerStatus::kStopped);
       CHECK(r.evaluations == 30);  // the batch under way when the flag was set completes
-      check_observed(rec, r);
+      check_pagmo_observed(rec, r);
     }
   }
 }

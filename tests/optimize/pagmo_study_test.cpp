@@ -35,7 +35,7 @@ std::string load_error(const std::vector<std::string>& overrides, std::string* p
 }
 
 /// `pronk optimize` of the example made small: populations of 8, 40 evaluations.
-Run optimize(const TempDir& d, const std::string& out, const std::string& threads,
+Run optimize(const cli_support::TempDir& d, const std::string& out, const std::string& threads,
              bool resume = false) {
   std::vector<std::string> args = {"optimize",
                                    kStudy,
@@ -81,7 +81,7 @@ TEST_CASE("pagmo studies: a bad optimizer section names its pointer", "[optimize
 
   // The command line: exit 2, one line naming the study file, the pointer, what was expected
   // and what was found, for an unknown algorithm, an unknown option and a small population.
-  TempDir d("pagmo_study");
+  cli_support::TempDir d("pagmo_study");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"/optimizer/algorithm=\"nsga9\"",
        "/optimizer/algorithm: expected a pagmo algorithm pronk offers (cmaes, xnes, de, sade, "
@@ -104,7 +104,7 @@ TEST_CASE("pagmo studies: a bad optimizer section names its pointer", "[optimize
 
 TEST_CASE("pagmo studies: 1 and 2 threads write the same journal; kill -9 and --resume too",
           "[optimize][pagmo][journal][determinism]") {
-  TempDir d("pagmo_study");
+  cli_support::TempDir d("pagmo_study");
   const Run one = optimize(d, "t1", "1");
   INFO(one.err);
   REQUIRE(one.code == 0);
