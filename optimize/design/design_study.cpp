@@ -37,12 +37,6 @@ void check_legged(const json& doc, const scene::Scene& s, const std::string& fil
 // The stance time of duty d on the robot's flight: d = Ts / (Ts + Tf).
 double stance_for_duty(double duty, double flight) { return duty * flight / (1.0 - duty); }
 
-// The placement trim's gain for a moving setpoint: 0.8 of the linear model's dead-beat
-// correction per stride. Measured on the tripod at 0.4 m/s (its first design, nominal
-// disturbed start): the fore-aft error within 5 mm by the 12th stride; about 1.5 set off a
-// period-2 fore-aft oscillation.
-constexpr double kPlacementTrimGain = 0.8;
-
 struct Derived {
   std::vector<std::string> overrides;  ///< the study's scene_overrides
   double stance_lo = 0.0, stance_hi = 0.0, stance0 = 0.0;
@@ -70,16 +64,6 @@ Derived derive_overrides(const json& doc, const std::string& file, const scene::
     const json start = {p.x(), p.y(), s.legs.length + s.controller.hop_height};
     d.overrides.push_back("/initial=" +
                           json{{"position", start}, {"velocity", {v.x(), v.y(), 0.0}}}.dump());
-  }
-  // A moving setpoint: the placement trim learns the placed legs' steady fore-aft shortfall
-  // (docs/full_model.md), unless the scene sets it.
-  const bool moving = s.controller.setpoint_velocity.head<2>().norm() > 0.0;
-  const bool has_full = doc.contains("pseudo_rigid") && doc["pseudo_rigid"].is_object();
-  if (moving && !has_full) {
-    d.overrides.push_back("/pseudo_rigid=" +
-                          json{{"placement_trim_gain", kPlacementTrimGain}}.dump());
-  } else if (moving && !doc["pseudo_rigid"].contains("placement_trim_gain")) {
-    d.overrides.push_back("/pseudo_rigid/placement_trim_gain=" + json(kPlacementTrimGain).dump());
   }
   json full_doc = with_overrides(doc, d.overrides);
   full_doc["model"] = "pseudo_rigid";
@@ -161,15 +145,8 @@ void full_model_settings(const Derived& d, json* params, std::vector<std::string
                   100.0 * inertia[i], 1600.0 * inertia[i], false, p.stance_kd[i]));
   }
   add(parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
-  // A moving setpoint's steady push is the placement trim's to learn (placement_trim_gain,
-  // not tuned: a gain of the stride-to-stride loop, normalised by the placement's response);
-  // the position trim starts low beside it, or the two integral actions overshoot together.
-  const bool moving = s.controller.setpoint_velocity.head<2>().norm() > 0.0;
-  const double position_trim = moving && p.placement_trim_gain > 0.0
-                                   ? std::min(p.position_trim_gain, 0.1)
-                                   : p.position_trim_gain;
   add(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8, false,
-                position_trim));
+                p.position_trim_gain));
   add(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0, false,
                 p.attitude_trim_gain));
 }
