@@ -6,6 +6,7 @@
 
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
+#include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
 #include "optimize/parameters.hpp"
 #include "optimize/scenario.hpp"
@@ -242,8 +243,9 @@ json perturbed_document(const json& resolved, const std::vector<PlantDraw>& draw
 }
 
 scene::Scene perturbed_scene(const scene::Scene& nominal, const std::vector<PlantDraw>& draws) {
-  scene::Scene plant =
-      io::parse_scene(perturbed_document(io::scene_to_json(nominal), draws), "perturbed scene");
+  json doc = io::scene_to_json(nominal);
+  io::add_defaulted_settings(&doc);  // (actuator_gain, the sensor bias: drawn like any number)
+  scene::Scene plant = io::parse_scene(perturbed_document(doc, draws), "perturbed scene");
   plant.controller_model = scene::controller_model_of(nominal);
   return plant;
 }

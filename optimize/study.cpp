@@ -347,10 +347,12 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   // The scene must be valid as given (its errors name the scene file).
   const scene::Scene scene0 = io::parse_scene(scene_doc, scene_file);
   EvaluatorConfig& ec = st.evaluator;
-  const json resolved = io::scene_to_json(scene0);
-  ec.scene_doc = resolved;
+  const json resolved = io::scene_to_json(scene0);  // (the hash's: without the defaulted)
+  json bindable = resolved;  // every number a parameter or a perturbation can name
+  io::add_defaulted_settings(&bindable);
+  ec.scene_doc = bindable;
   ec.scene_file = scene_file;
-  parse_study_parameters(r, scene0, resolved, &ec);
+  parse_study_parameters(r, scene0, bindable, &ec);
 
   // Scenarios, and the optional held-out validation set.
   // Robot perturbations are checked against the scene at the parameters' starts.

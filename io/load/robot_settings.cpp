@@ -105,6 +105,11 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   parse_leg_stiffness(r, node, &p, given);
   p.leg_damping = r.number_or("leg_damping", p.leg_damping, 0.0, 1e9);
   p.actuator_max_force = r.number_or("actuator_max_force", p.actuator_max_force, 0.0, 1e9);
+  p.actuator_gain = r.number_or("actuator_gain", p.actuator_gain, 1e-3, 10.0);
+  if (r.has("attitude_sensor_bias_deg")) {
+    const Eigen::VectorXd b = r.vector("attitude_sensor_bias_deg", 2, -30.0, 30.0);
+    for (int k = 0; k < 2; ++k) p.attitude_sensor_bias[k] = b[k] * M_PI / 180.0;
+  }
   p.impulse_feedback = r.boolean_or("impulse_feedback", p.impulse_feedback);
   p.actuators = r.boolean_or("actuators", p.actuators);
   p.body_error_norm =
@@ -211,11 +216,28 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
     j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
     for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);
   }
-  // Absent when off: the scenes and studies recorded before it existed keep their hash.
+  // Absent when off (exact): the scenes and studies recorded before they existed keep their
+  // hash.
   if (p.placement_trim_gain > 0.0) j["placement_trim_gain"] = p.placement_trim_gain;
+  if (p.actuator_gain != 1.0) j["actuator_gain"] = p.actuator_gain;
+  if (p.attitude_sensor_bias[0] != 0.0 || p.attitude_sensor_bias[1] != 0.0) {
+    j["attitude_sensor_bias_deg"] = {p.attitude_sensor_bias[0] * 180.0 / M_PI,
+                                     p.attitude_sensor_bias[1] * 180.0 / M_PI};
+  }
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
   return j;
+}
+
+void add_defaulted_settings(json* resolved_scene) {
+  if (!resolved_scene->contains("pseudo_rigid")) return;
+  json& p = (*resolved_scene)["pseudo_rigid"];
+  const scene::PseudoRigid d;
+  if (!p.contains("placement_trim_gain")) p["placement_trim_gain"] = d.placement_trim_gain;
+  if (!p.contains("actuator_gain")) p["actuator_gain"] = d.actuator_gain;
+  if (!p.contains("attitude_sensor_bias_deg")) {
+    p["attitude_sensor_bias_deg"] = {d.attitude_sensor_bias[0], d.attitude_sensor_bias[1]};
+  }
 }
 
 std::vector<std::string> unused_settings(const scene::Scene& s) {

@@ -19,8 +19,15 @@ namespace pronk::io {
 void parse_pseudo_rigid(JsonReader r, const nlohmann::json& node, scene::PseudoRigid* out,
                         GivenSettings* given);
 
-/// The resolved "pseudo_rigid" object; parse_pseudo_rigid reproduces it.
+/// The resolved "pseudo_rigid" object; parse_pseudo_rigid reproduces it. Settings added after
+/// designs were first recorded (placement_trim_gain, actuator_gain, attitude_sensor_bias_deg)
+/// are left out at their defaults, so a recorded study's hash, which covers the resolved
+/// scene, stays the same.
 nlohmann::json pseudo_rigid_to_json(const scene::PseudoRigid& p);
+
+/// Adds those left-out settings at their defaults to a resolved scene's "pseudo_rigid"
+/// object, so that a design parameter or a perturbation can name them.
+void add_defaulted_settings(nlohmann::json* resolved_scene);
 
 /// Top-level scene settings that `scene.model` accepts but does not use, as
 /// JSON Pointers (e.g. "/pseudo_rigid" for the reduced models).

@@ -61,7 +61,7 @@ double free_leg_response(const Vector3d& P, double stance, double leg, double ma
 /// turn each leg in the air along its total impulse; the foot moves with the leg (its
 /// energy change is hip work).
 void RobotRun::place_legs(double t, ode::Vec& y) {
-  control::BodyState s = trimmed(run_.body_state(y));
+  control::BodyState s = trimmed(sensed(run_.body_state(y)));
   if (!(s.position.z() - l_ > 0.0)) return;
   Matrix3d R_td;
   const std::vector<Vector3d> u = placement(t, y, s, R_td);

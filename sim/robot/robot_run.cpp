@@ -220,7 +220,8 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
   finish_stride(t);
   ++touchdown_events_;
   if (touchdowns_ >= scene_.simulation.max_strides) return run::Next::kStop;
-  const control::BodyState s = run_.body_state(y);
+  const control::BodyState s = run_.body_state(y);  // the stride's record: the true state
+  const control::BodyState read = sensed(s);
   if (prs_.position_trim_gain > 0.0) {
     const Vector3d x_d =
         scene_.controller.setpoint_position + scene_.controller.setpoint_velocity * t;
@@ -231,15 +232,17 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
   }
   if (prs_.attitude_trim_gain > 0.0) {
     for (int k = 0; k < 2; ++k) {
-      data_.attitude_trim[k] =
-          std::clamp(data_.attitude_trim[k] + prs_.attitude_trim_gain * s.euler123[k], -0.2, 0.2);
+      data_.attitude_trim[k] = std::clamp(
+          data_.attitude_trim[k] + prs_.attitude_trim_gain * read.euler123[k], -0.2, 0.2);
     }
   }
   const control::StancePlan plan =
-      control::plan_stance(control_.context(t, false), touchdowns_, t, trimmed(s));
+      control::plan_stance(control_.context(t, false), touchdowns_, t, trimmed(read));
   current_ = reduced::open_stride(touchdowns_++, t, s, plan, scene_, result.run.warnings);
-  // The stance attitude feedback holds the tilt that the integral action has learnt.
-  sys_.set_stance_tilt(-data_.attitude_trim);
+  // The stance attitude feedback holds the tilt that the integral action has learnt, as its
+  // sensor reads it (a bias b read on top of the tilt holds the body at -b).
+  sys_.set_stance_tilt(-data_.attitude_trim -
+                       Eigen::Vector2d(prs_.attitude_sensor_bias[0], prs_.attitude_sensor_bias[1]));
   have_stride_ = true;
   run_.stride_slip = 0.0;
   p_touchdown_ = total_momentum(y);

@@ -126,8 +126,18 @@ class RobotRun final : public run::HybridModel {
     have_stride_ = false;
   }
   void set_actuators() { sys_.set_actuators(data_.leg_force, data_.push); }
-  /// The body state the controller sees: position, roll and pitch offset by the integral
-  /// actions.
+  /// The body state as the sensors read it: roll and pitch offset by the attitude sensor's
+  /// bias (pseudo_rigid.attitude_sensor_bias).
+  control::BodyState sensed(control::BodyState s) const {
+    const double* b = prs_.attitude_sensor_bias;
+    if (b[0] == 0.0 && b[1] == 0.0) return s;
+    s.euler123.head<2>() += Eigen::Vector2d(b[0], b[1]);
+    s.attitude = math::euler_to_quat(s.euler123, math::EulerSet::k123);
+    s.rotation = s.attitude.toRotationMatrix();
+    return s;
+  }
+  /// The body state the controller sees: the sensed one, position, roll and pitch offset by
+  /// the integral actions.
   control::BodyState trimmed(control::BodyState s) const {
     s.position.head<2>() += data_.position_trim.head<2>();
     if (prs_.attitude_trim_gain > 0.0) {

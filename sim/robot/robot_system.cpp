@@ -123,6 +123,7 @@ std::vector<double> RobotSystem::actuator_forces(const ode::Vec& y) const {
   if (feedback(y)) {
     for (size_t i = 0; i < out.size(); ++i) out[i] += fb_[i];
   }
+  for (double& f : out) f *= settings_.actuator_gain;
   return out;
 }
 
@@ -135,7 +136,7 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
   const auto& body = model_.mechanism.bodies[model_.body];
   const Eigen::Matrix3d R = sys_.frames(y)[model_.body].rotation;
   for (size_t i = 0; i < force_.size(); ++i) {
-    double fi = force_[i] + fb_[i];
+    double fi = settings_.actuator_gain * (force_[i] + fb_[i]);
     if (settings_.actuator_max_force > 0.0) {
       fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
     }

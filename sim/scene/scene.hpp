@@ -129,6 +129,14 @@ struct PseudoRigid {
   /// Leg actuator force limit [N]; 0 = unlimited. A saturated pulse delivers less
   /// than requested unless impulse_feedback keeps the actuator on.
   double actuator_max_force = 0.0;
+  /// Actuation error: every leg actuator delivers this times the force it is commanded
+  /// (the stance feedback's included), before its force limit. 1 = exact; a robust design
+  /// draws it per trial ("perturb"), the controller does not know it [-].
+  double actuator_gain = 1.0;
+  /// Sensing error: the roll and pitch the controllers read are the body's plus this
+  /// (about body x and y; the stride controller at touchdown and at the placement, the
+  /// stance attitude feedback continuously; rates are read exactly). 0 = exact [rad].
+  double attitude_sensor_bias[2] = {0.0, 0.0};
   /// Leg controllers close the loop on delivered impulse (Ridgely 2001, §5.4): each actuator
   /// stays on until the impulse it delivered reaches its allocation.
   bool impulse_feedback = false;

@@ -258,6 +258,28 @@ TEST_CASE("the full model's controller reads the nominal numbers, the dynamics t
   CHECK(k.run.strides[1].apex_height != t.run.strides[1].apex_height);
 }
 
+TEST_CASE("actuation and sensing errors are drawn like any number of the robot",
+          "[optimize][perturb]") {
+  // Both are left out of the resolved scene at their defaults (1, 0): a study still names them.
+  parse_study(study_with("pr_running.json",
+                         {{{"pointer", "/pseudo_rigid/actuator_gain"}, {"relative", {-0.1, 0.1}}},
+                          {{"pointer", "/pseudo_rigid/attitude_sensor_bias_deg/1"},
+                           {"range", {-1.0, 1.0}}}}),
+              "robust.json", ".");
+  const scene::Scene nominal = io::load_scene(scene_path("pr_running.json"));
+  Scenario s;
+  s.plant = {{"/pseudo_rigid/actuator_gain", true, -0.1},
+             {"/pseudo_rigid/attitude_sensor_bias_deg/1", false, 0.5}};
+  const scene::Scene plant = apply_scenario(nominal, s, one(s));
+  CHECK(plant.pseudo_rigid.actuator_gain == Approx(0.9).epsilon(1e-15));
+  CHECK(plant.pseudo_rigid.attitude_sensor_bias[1] == Approx(0.5 * M_PI / 180.0).epsilon(1e-15));
+  CHECK(plant.pseudo_rigid.attitude_sensor_bias[0] == 0.0);
+  // The pulse model has neither: refused there, as its ignored numbers are.
+  const auto e = refusal("case3_legged_pulse.json",
+                         {{{"pointer", "/pseudo_rigid/actuator_gain"}, {"range", {0.9, 1.1}}}});
+  CHECK(e.expected() == "a number the pulse model uses");
+}
+
 TEST_CASE(
     "a study refuses robot perturbations that name nothing, that the model ignores or that "
     "make the robot unphysical",
