@@ -15,8 +15,9 @@ export PRONK_WITH_WEB=${PRONK_WITH_WEB:-1}
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)")
 if [[ "${PRONK_SANITIZE:-0}" == 1 ]]; then
   # Only the tool and its tests (benchmarks and peers are timed in Release, not sanitized),
-  # line tables only (-g1: full -g makes the sanitized compile 3x slower), a unity build
-  # (468 s instead of 559 s on 2 cores), and the [heavy] tests are left to the Release tree
+  # line tables only (-g1: full -g makes the sanitized compile 3x slower), the library in a
+  # unity build (the tests compile file by file, see CMakeLists.txt), and the [heavy] tests
+  # are left to the Release tree
   # (see CMakeLists.txt).
   PRONK_BUILD_TARGETS="pronk pronk_tests" "$root/scripts/build.sh" "$root/build-asan" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DPRONK_SANITIZE=ON -DCMAKE_UNITY_BUILD=ON
   (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j "$(nproc)")
