@@ -73,6 +73,15 @@ void parse_stance_attitude(JsonReader& r, scene::PseudoRigid* p, GivenSettings* 
   a.finish();
 }
 
+// The settings added after designs were first recorded, as the resolved scene writes them:
+// pseudo_rigid_to_json leaves each out at its default, add_defaulted_settings puts it back.
+json late_settings(const scene::PseudoRigid& p) {
+  return {{"placement_trim_gain", p.placement_trim_gain},
+          {"actuator_gain", p.actuator_gain},
+          {"attitude_sensor_bias_deg",
+           {p.attitude_sensor_bias[0] * 180.0 / M_PI, p.attitude_sensor_bias[1] * 180.0 / M_PI}}};
+}
+
 }  // namespace
 
 void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
@@ -107,8 +116,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   p.actuator_max_force = r.number_or("actuator_max_force", p.actuator_max_force, 0.0, 1e9);
   p.actuator_gain = r.number_or("actuator_gain", p.actuator_gain, 1e-3, 10.0);
   if (r.has("attitude_sensor_bias_deg")) {
-    const Eigen::VectorXd b = r.vector("attitude_sensor_bias_deg", 2, -30.0, 30.0);
-    for (int k = 0; k < 2; ++k) p.attitude_sensor_bias[k] = b[k] * M_PI / 180.0;
+    p.attitude_sensor_bias = r.vector("attitude_sensor_bias_deg", 2, -30.0, 30.0) * M_PI / 180.0;
   }
   p.impulse_feedback = r.boolean_or("impulse_feedback", p.impulse_feedback);
   p.actuators = r.boolean_or("actuators", p.actuators);
@@ -216,13 +224,11 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
     j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
     for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);
   }
-  // Absent when off (exact): the scenes and studies recorded before they existed keep their
+  // Absent at their defaults: the scenes and studies recorded before they existed keep their
   // hash.
-  if (p.placement_trim_gain > 0.0) j["placement_trim_gain"] = p.placement_trim_gain;
-  if (p.actuator_gain != 1.0) j["actuator_gain"] = p.actuator_gain;
-  if (p.attitude_sensor_bias[0] != 0.0 || p.attitude_sensor_bias[1] != 0.0) {
-    j["attitude_sensor_bias_deg"] = {p.attitude_sensor_bias[0] * 180.0 / M_PI,
-                                     p.attitude_sensor_bias[1] * 180.0 / M_PI};
+  const json late = late_settings(p), defaults = late_settings(scene::PseudoRigid{});
+  for (const auto& [key, value] : late.items()) {
+    if (value != defaults[key]) j[key] = value;
   }
   j["internal_stiffness"] = p.internal_auto ? json("auto") : json(p.internal_stiffness);
   j["contact_stiffness"] = p.contact_auto ? json("auto") : json(p.contact_stiffness);
@@ -232,11 +238,9 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
 void add_defaulted_settings(json* resolved_scene) {
   if (!resolved_scene->contains("pseudo_rigid")) return;
   json& p = (*resolved_scene)["pseudo_rigid"];
-  const scene::PseudoRigid d;
-  if (!p.contains("placement_trim_gain")) p["placement_trim_gain"] = d.placement_trim_gain;
-  if (!p.contains("actuator_gain")) p["actuator_gain"] = d.actuator_gain;
-  if (!p.contains("attitude_sensor_bias_deg")) {
-    p["attitude_sensor_bias_deg"] = {d.attitude_sensor_bias[0], d.attitude_sensor_bias[1]};
+  const json defaults = late_settings(scene::PseudoRigid{});  // items() needs it to outlive the loop
+  for (const auto& [key, value] : defaults.items()) {
+    if (!p.contains(key)) p[key] = value;
   }
 }
 

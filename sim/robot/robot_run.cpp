@@ -241,8 +241,7 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
   current_ = reduced::open_stride(touchdowns_++, t, s, plan, scene_, result.run.warnings);
   // The stance attitude feedback holds the tilt that the integral action has learnt, as its
   // sensor reads it (a bias b read on top of the tilt holds the body at -b).
-  sys_.set_stance_tilt(-data_.attitude_trim -
-                       Eigen::Vector2d(prs_.attitude_sensor_bias[0], prs_.attitude_sensor_bias[1]));
+  sys_.set_stance_tilt(-data_.attitude_trim - prs_.attitude_sensor_bias);
   have_stride_ = true;
   run_.stride_slip = 0.0;
   p_touchdown_ = total_momentum(y);

@@ -129,23 +129,21 @@ class RobotRun final : public run::HybridModel {
   /// The body state as the sensors read it: roll and pitch offset by the attitude sensor's
   /// bias (pseudo_rigid.attitude_sensor_bias).
   control::BodyState sensed(control::BodyState s) const {
-    const double* b = prs_.attitude_sensor_bias;
-    if (b[0] == 0.0 && b[1] == 0.0) return s;
-    s.euler123.head<2>() += Eigen::Vector2d(b[0], b[1]);
-    s.attitude = math::euler_to_quat(s.euler123, math::EulerSet::k123);
-    s.rotation = s.attitude.toRotationMatrix();
+    if (!prs_.attitude_sensor_bias.isZero()) tilt(prs_.attitude_sensor_bias, s);
     return s;
   }
   /// The body state the controller sees: the sensed one, position, roll and pitch offset by
   /// the integral actions.
   control::BodyState trimmed(control::BodyState s) const {
     s.position.head<2>() += data_.position_trim.head<2>();
-    if (prs_.attitude_trim_gain > 0.0) {
-      s.euler123.head<2>() += data_.attitude_trim;
-      s.attitude = math::euler_to_quat(s.euler123, math::EulerSet::k123);
-      s.rotation = s.attitude.toRotationMatrix();
-    }
+    if (prs_.attitude_trim_gain > 0.0) tilt(data_.attitude_trim, s);
     return s;
+  }
+  /// Offsets the roll and pitch of s by d [rad], its attitude and rotation with them.
+  static void tilt(const Eigen::Vector2d& d, control::BodyState& s) {
+    s.euler123.head<2>() += d;
+    s.attitude = math::euler_to_quat(s.euler123, math::EulerSet::k123);
+    s.rotation = s.attitude.toRotationMatrix();
   }
   void book_work(double e_before, const ode::Vec& y) {
     book_hip_work(result.monitors, msys_.energies(y).total() - e_before);

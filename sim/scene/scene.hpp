@@ -136,7 +136,7 @@ struct PseudoRigid {
   /// Sensing error: the roll and pitch the controllers read are the body's plus this
   /// (about body x and y; the stride controller at touchdown and at the placement, the
   /// stance attitude feedback continuously; rates are read exactly). 0 = exact [rad].
-  double attitude_sensor_bias[2] = {0.0, 0.0};
+  Eigen::Vector2d attitude_sensor_bias = Eigen::Vector2d::Zero();
   /// Leg controllers close the loop on delivered impulse (Ridgely 2001, §5.4): each actuator
   /// stays on until the impulse it delivered reaches its allocation.
   bool impulse_feedback = false;

@@ -8,19 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace {
 
 pronk::RunResult run(const std::vector<std::string>& overrides) {
-  std::string path = PRONK_SOURCE_DIR;  // (+=: GCC 12 warns falsely on string&& + literal)
-  path += "/tests/robot/data/tripod_first_design.json";
   std::vector<std::string> o = {"/controller/setpoint/velocity=[0,0,0]",
                                 "/initial/velocity=[0,0,0]", "/initial/position=[0,0,0.55]",
                                 "/initial/attitude_quaternion=[1,0,0,0]"};
   o.insert(o.end(), overrides.begin(), overrides.end());
-  const pronk::scene::Scene s = pronk::io::load_scene(path, o);
+  const pronk::scene::Scene s = pronk::test::load_test_scene("tripod_first_design", o);
   pronk::RunOptions opt;
   opt.record_trajectory = false;
   pronk::RunResult r = pronk::simulate(s, opt);

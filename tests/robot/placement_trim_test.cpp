@@ -9,15 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace {
 
 pronk::RunResult run(const std::vector<std::string>& overrides) {
-  std::string path = PRONK_SOURCE_DIR;  // (+=: GCC 12 warns falsely on string&& + literal)
-  path += "/tests/robot/data/tripod_first_design.json";
-  const pronk::scene::Scene s = pronk::io::load_scene(path, overrides);
+  const pronk::scene::Scene s = pronk::test::load_test_scene("tripod_first_design", overrides);
   pronk::RunOptions o;
   o.record_trajectory = false;
   pronk::RunResult r = pronk::simulate(s, o);
