@@ -1,18 +1,22 @@
 // Benchmark: a pagmo population of 32 evaluated as one batch, on 1 and 2 threads, on
-// study 2's problem (legged pulse model, 16 scenarios of 12 s per evaluation): CMA-ES
-// for 8 populations (256 evaluations), interleaved repeats after a warm-up, medians and
+// study 2's problem (legged pulse model, 16 scenarios of 12 s per evaluation; CMA-ES for
+// 8 populations, 256 evaluations) or, with problem "full", on study 3's full-model stage
+// (the shipped robot in the pseudo-rigid model, 8 scenarios of 2 s per evaluation; 2
+// populations, 64 evaluations): interleaved repeats after a warm-up, medians and
 // the speed-up, whether both thread counts found the same best cost (they must: the
 // evaluations are placed by index), and the load average while it ran (the machine may
 // be shared). Beside it, the same 256 points evaluated as 8 batches of 32 straight by the
 // Evaluator (no pagmo): the ceiling the machine gives at that moment; and each run's
 // process CPU time over its wall time, the cores it really had (a 2-thread run that got
-// one core shows 1.0). Prints one JSON object. Usage: bench_pagmo [repeats] [algorithm]
+// one core shows 1.0). Prints one JSON object.
+// Usage: bench_pagmo [repeats] [algorithm] [study2|full]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +25,7 @@
 #include "app/bench/measure.hpp"
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
+#include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 
 using namespace pronk::optimize;
@@ -62,18 +67,47 @@ struct Points final : EvaluationObserver {
   }
 };
 
+/// Study 2 with pagmo's `algorithm`, `population` per generation, `generations` of them.
+Study study2_problem(const std::string& algorithm, int population, int generations) {
+  return load_study(std::string(PRONK_SOURCE_DIR) + "/studies/study2_pagmo_cmaes.json",
+                    {"/optimizer/algorithm=" + algorithm,
+                     "/optimizer/options={\"population\": " + std::to_string(population) + "}",
+                     "/optimizer/max_evaluations=" + std::to_string(population * generations)});
+}
+
+/// Study 3's full-model stage, started where its committed pulse stage ended
+/// (results/study3_full_model_running/design.json), tuned by pagmo, on 8 of its trials cut
+/// to 2 s (an evaluation costs about 0.4 s of one core instead of 5.6 s).
+Study full_model_problem(const std::string& algorithm, int population, int generations) {
+  const std::string dir = std::string(PRONK_SOURCE_DIR) + "/studies/";
+  const std::string file = dir + "study3_full_model_running.json";
+  std::ifstream in(file);
+  nlohmann::json doc = nlohmann::json::parse(in);
+  nlohmann::json& stage = doc.at("stages").at(1);
+  stage["optimizer"] = {{"library", "pagmo"},
+                        {"algorithm", algorithm},
+                        {"max_evaluations", population * generations},
+                        {"seed", 3},
+                        {"options", {{"population", population}}}};
+  stage["scenarios"] = doc.at("scenarios");
+  stage["scenarios"]["duration"] = 2.0;
+  stage["scenarios"]["random"]["count"] = 8;
+  std::ifstream recorded(std::string(PRONK_SOURCE_DIR) +
+                         "/results/study3_full_model_running/design.json");
+  const std::map<std::string, double> pulse_stage =
+      nlohmann::json::parse(recorded).at("stages").at(0).at("parameters");
+  return stage_study(parse_staged_study(doc, file, dir), 1, pulse_stage);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const std::string algorithm = argc > 2 ? argv[2] : "cmaes";
-  const int population = 32, populations = 8;
-  const std::string dir = std::string(PRONK_SOURCE_DIR) + "/studies/";
-  const Study st =
-      load_study(dir + "study2_pagmo_cmaes.json",
-                 {"/optimizer/algorithm=" + algorithm,
-                  "/optimizer/options={\"population\": " + std::to_string(population) + "}",
-                  "/optimizer/max_evaluations=" + std::to_string(population * populations)});
+  const bool full = argc > 3 && std::string(argv[3]) == "full";
+  const int population = 32, populations = full ? 2 : 8;
+  const Study st = full ? full_model_problem(algorithm, population, populations)
+                        : study2_problem(algorithm, population, populations);
   // One pagmo run; and the same points as batches of a population straight by the Evaluator.
   auto run = [&](int threads, OptimizerResult* r, Points* seen) {
     EvaluatorConfig cfg = st.evaluator;
@@ -109,7 +143,8 @@ int main(int argc, char** argv) {
   }
   const nlohmann::json out = {
       {"benchmark", "pagmo_population_batch"},
-      {"study", "study2_pagmo_cmaes (study 2's problem)"},
+      {"study", full ? "study3_full_model_running, full-model stage (8 scenarios of 2 s)"
+                     : "study2_pagmo_cmaes (study 2's problem)"},
       {"algorithm", algorithm},
       {"population", population},
       {"evaluations", r1.evaluations},
