@@ -29,6 +29,16 @@ extern "C" void on_map_sigint(int) {
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
+// Where along the first axis the two models first disagree, as a sentence (summary.json's
+// "disagreement": either value is null when there is none).
+std::string disagreement_sentence(const nlohmann::json& d, const std::string& axis) {
+  const nlohmann::json& first = d.at("first_disagreement");
+  const nlohmann::json& upto = d.at("no_disagreement_up_to");
+  if (first.is_null()) return "none anywhere on the grid (" + axis + " up to " + upto.dump() + ")";
+  if (upto.is_null()) return "the first already at the grid's first " + axis + " = " + first.dump();
+  return "none up to " + axis + " = " + upto.dump() + ", the first at " + first.dump();
+}
+
 int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o,
            const std::string& workers, bool quiet) {
   if (o.status != "completed") {
@@ -49,11 +59,11 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
       o.wall_time, workers.c_str());
   const auto& d = o.summary["disagreement"];
   if (st.models.size() > 1) {
-    std::printf("  disagreements %s vs %s: %ld trials; none up to %s = %s, first at %s\n",
+    std::printf("  disagreements %s vs %s: %ld trials; %s\n",
                 std::string(scene::to_string(st.models[0])).c_str(),
                 std::string(scene::to_string(st.models[1])).c_str(),
-                o.summary["totals"]["disagreements"].get<long>(), st.axes[0].name.c_str(),
-                d["no_disagreement_up_to"].dump().c_str(), d["first_disagreement"].dump().c_str());
+                o.summary["totals"]["disagreements"].get<long>(),
+                disagreement_sentence(d, st.axes[0].name).c_str());
   }
   for (const auto& b : o.boundaries) {
     std::printf("  boundary row %ld: %s %s = %.6g\n", b.row, b.status.c_str(),

@@ -64,6 +64,8 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
 
 namespace {
 
+std::string threads_text(int n) { return std::to_string(n) + (n == 1 ? " thread" : " threads"); }
+
 // The command's options for a study run; Ctrl-C from here on stops at the next evaluation.
 optimize::StudyRunOptions run_options(const OptimizeArgs& args, optimize::JobFarm* farm) {
   optimize::StudyRunOptions opt;
@@ -103,7 +105,7 @@ int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
                   o.final_best.cost);
       std::printf(
           "  results: %s/ (design.json, summary.md, stages/), %s\n", o.out_dir.c_str(),
-          farm ? farm->describe().c_str() : (std::to_string(opt.threads) + " threads").c_str());
+          farm ? farm->describe().c_str() : threads_text(opt.threads).c_str());
     }
   }
   if (o.ok) write_page_after(o.out_dir, args.quiet);
@@ -137,7 +139,7 @@ int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize:
   const optimize::StudyOutcome o = optimize::run_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {
-    const std::string workers = farm ? farm->describe() : std::to_string(opt.threads) + " threads";
+    const std::string workers = farm ? farm->describe() : threads_text(opt.threads);
     std::printf("%s: %s\n", study.name.c_str(), o.result.brief_report().c_str());
     std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed%s), %.1f s, %s\n",
                 o.initial.cost, o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",

@@ -34,7 +34,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
                   "Override a scene value: --set /json/pointer=value (repeatable)")
       ->type_name("/PTR=VALUE");
   cmd->add_option("--out", args.out_dir, "Output directory (default: out/<scene name>)");
-  cmd->add_flag("--quiet,-q", args.quiet, "Print nothing on success");
+  cmd->add_flag("--quiet,-q", args.quiet, "Print nothing on success (a run that does not complete still says so on stderr)");
   return cmd;
 }
 
@@ -68,6 +68,10 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
     }
     std::printf("  outputs in %s/\n", dir.c_str());
     print_page_line(page);
+  } else if (run.status != pseudorigid::RunStatus::kCompleted) {
+    std::fprintf(stderr, "pronk simulate: %s: %s, %s (outputs in %s/)\n",
+                 scene.mechanism.name.c_str(), std::string(pseudorigid::to_string(run.status)).c_str(),
+                 run.reason.c_str(), dir.c_str());
   }
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }
@@ -146,8 +150,15 @@ int run_simulate(const SimulateArgs& args) {
   reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
   const io::WrittenOutputs w = io::write_simulation_outputs(dir, scene, r, metrics);
-  if (!args.quiet) print_robot_run(scene, r, metrics, dir, w.page);
-  return r.run.status == reduced::RunStatus::kCompleted ? 0 : 1;
+  const bool ok = r.run.status == reduced::RunStatus::kCompleted;
+  if (!args.quiet) {
+    print_robot_run(scene, r, metrics, dir, w.page);
+  } else if (!ok) {  // quiet keeps success silent, not a fall
+    std::fprintf(stderr, "pronk simulate: %s: %s, %s (outputs in %s/)\n", scene.name.c_str(),
+                 std::string(reduced::to_string(r.run.status)).c_str(), r.run.reason.c_str(),
+                 dir.c_str());
+  }
+  return ok ? 0 : 1;
 }
 
 }  // namespace pronk::app

@@ -388,11 +388,12 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
      << " model on the last stage's scenarios:\n\n| metric | first stage's design | final design "
         "|\n|---|---|---|\n";
   md << "| cost | " << o.gap_first.cost << " | " << o.final_best.cost << " |\n";
-  for (const auto& [k, v] : o.final_best.aggregated) {
-    const auto it = o.gap_first.aggregated.find(k);
-    md << "| " << k << " | " << (it != o.gap_first.aggregated.end() ? it->second : 0.0) << " | "
-       << v << " |\n";
-  }
+  // The last stage's "stability" (its own, or the study's; on by default).
+  const nlohmann::json& last = st.stages.back().overrides;
+  const bool stability = last.is_object() && last.contains("stability")
+                             ? last["stability"].get<bool>()
+                             : st.document.value("stability", true);
+  md << metric_rows(o.gap_first.aggregated, o.final_best.aggregated, stability);
   if (!o.cross.empty()) {
     md << "\n## Every design in every model\n\nRows: the stage whose design is evaluated; "
           "columns: the stage (model and scenarios) that evaluates it. Each cell: mean "

@@ -27,6 +27,24 @@
 
 namespace pronk::optimize {
 
+std::string metric_rows(const MetricMap& a, const MetricMap& b, bool stability) {
+  auto value = [](const MetricMap& m, const std::string& k) {
+    const auto it = m.find(k);
+    return it != m.end() ? it->second : 0.0;
+  };
+  std::ostringstream md;
+  for (const auto& [k, v] : b) {
+    if (k == "spectral_radius" && !stability) continue;
+    if (k.size() > 6 && k.rfind("mean(", 0) == 0 && k.back() == ')') {
+      const std::string m = k.substr(5, k.size() - 6);
+      if (b.count(m) && value(b, m) == v && value(a, m) == value(a, k)) continue;
+    }
+    md << "| " << k << " | " << value(a, k) << " | " << v << " |\n";
+  }
+  return md.str();
+}
+
+
 using nlohmann::json;
 
 namespace {
@@ -205,18 +223,14 @@ void write_design_run(const std::string& dir, const Evaluator& ev, const std::ve
 }
 
 // The tuned design on the validation starts, the nominal robot beside the perturbed ones.
-std::string validation_comparison(const StudyOutcome& o) {
+std::string validation_comparison(const StudyOutcome& o, bool stability) {
   std::ostringstream md;
   md << "\nThe tuned design on the same " << o.validation_best.scenarios.size()
      << " validation starts, with the nominal robot and with the robot perturbed as the set "
         "draws it (the controller knows only the nominal numbers):\n\n| metric | nominal robot "
         "| perturbed robot |\n|---|---|---|\n";
   md << "| cost | " << o.validation_nominal.cost << " | " << o.validation_best.cost << " |\n";
-  for (const auto& [k, v] : o.validation_best.aggregated) {
-    const auto it = o.validation_nominal.aggregated.find(k);
-    md << "| " << k << " | " << (it != o.validation_nominal.aggregated.end() ? it->second : 0.0)
-       << " | " << v << " |\n";
-  }
+  md << metric_rows(o.validation_nominal.aggregated, o.validation_best.aggregated, stability);
   return md.str();
 }
 
@@ -241,11 +255,7 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
   md << "\n| metric (over " << ev.scenarios.scenarios.size()
      << " scenarios) | initial | tuned |\n|---|---|---|\n";
   md << "| cost | " << o.initial.cost << " | " << o.best.cost << " |\n";
-  for (const auto& [k, v] : o.best.aggregated) {
-    const auto it = o.initial.aggregated.find(k);
-    md << "| " << k << " | " << (it != o.initial.aggregated.end() ? it->second : 0.0) << " | " << v
-       << " |\n";
-  }
+  md << metric_rows(o.initial.aggregated, o.best.aggregated, ev.stability);
   md << "\nConstraints (g <= 0 is feasible):\n\n";
   for (size_t c = 0; c < ev.constraints.size(); ++c) {
     md << "- " << ev.constraints[c].label() << ": initial g = " << o.initial.constraints[c]
@@ -255,12 +265,9 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
     md << "\nValidation on " << st.validation->scenarios.size()
        << " held-out scenarios (not seen by the optimizer):\n\n| metric | initial | tuned "
           "|\n|---|---|---|\n";
-    for (const auto& [k, v] : o.validation_best.aggregated) {
-      const auto it = o.validation_initial.aggregated.find(k);
-      md << "| " << k << " | " << (it != o.validation_initial.aggregated.end() ? it->second : 0.0)
-         << " | " << v << " |\n";
-    }
-    if (o.validation_compared) md << validation_comparison(o);
+    md << metric_rows(o.validation_initial.aggregated, o.validation_best.aggregated,
+                      ev.stability);
+    if (o.validation_compared) md << validation_comparison(o, ev.stability);
   }
   md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
      << "/design.json`), `history.csv`, `journal.jsonl`, `history.svg`, `compare.svg`, "

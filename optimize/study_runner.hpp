@@ -58,4 +58,10 @@ Evaluator validation_evaluator(const Study& study, int threads, JobFarm* farm = 
 /// design.json of a finished study (self-contained: reproducible from it alone).
 nlohmann::json design_document(const Study& study, const StudyOutcome& outcome, int threads);
 
+/// The metric rows ("| name | a | b |") of a summary table of two evaluations, as
+/// report.html shows them: an objective term "mean(m)" that repeats the row m is left out,
+/// and so is the spectral radius when the study did not compute it (`stability` false: it
+/// reads 0, which would look perfect).
+std::string metric_rows(const MetricMap& a, const MetricMap& b, bool stability);
+
 }  // namespace pronk::optimize

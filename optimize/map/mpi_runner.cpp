@@ -36,7 +36,10 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
       [&](long i, const nlohmann::json& r) { on_result(tasks[static_cast<size_t>(i)], r); }, stop);
 }
 
-std::string MpiRunner::describe() const { return std::to_string(farm_.ranks()) + " MPI ranks"; }
+std::string MpiRunner::describe() const {
+  const int n = farm_.ranks();
+  return std::to_string(n) + (n == 1 ? " MPI rank" : " MPI ranks");
+}
 
 MpiWorkerStats mpi_serve(const MapStudy& st) {
   return mpi::serve(

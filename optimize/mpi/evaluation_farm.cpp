@@ -34,7 +34,10 @@ std::vector<nlohmann::json> MpiJobFarm::run(long id, const Evaluator& here,
   return results;
 }
 
-std::string MpiJobFarm::describe() const { return std::to_string(farm_.ranks()) + " MPI ranks"; }
+std::string MpiJobFarm::describe() const {
+  const int n = farm_.ranks();
+  return std::to_string(n) + (n == 1 ? " MPI rank" : " MPI ranks");
+}
 
 WorkerStats serve_evaluations() {
   std::vector<std::unique_ptr<Evaluator>> evaluators;  // by configuration id

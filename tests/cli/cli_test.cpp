@@ -356,6 +356,9 @@ TEST_CASE("a run that falls exits 1 with status fell and finite outputs", "[cli]
                             "/initial/angular_velocity=[40,0,0]", "--out", "fell", "-q"});
   REQUIRE(r.code == 1);
   CHECK_THAT(r.err, !Contains("pronk: error"));
+  // -q keeps a completed run silent, not a fall: one line on stderr says what happened.
+  CHECK_THAT(r.err, Contains("pronk simulate: ") && Contains(": fell, body tilted past 60 deg"));
+  CHECK(r.out.empty());
   const json summary = json::parse(slurp(dir / "fell/summary.json"));
   CHECK(summary["status"] == "fell");
   CHECK_THAT(summary["reason"].get<std::string>(), Contains("tilted past 60 deg"));

@@ -123,6 +123,10 @@ TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
   CHECK(summary["spectral_radius_method"] == "off");
   // The two models judge this trial alike (see the engine test for the reasons).
   CHECK(summary["totals"]["disagreements"] == 0);
+  CHECK(summary["disagreement"]["first_disagreement"].is_null());
+  CHECK_THAT(slurp(d.path + "/stdout.txt"),
+             Catch::Matchers::Contains("disagreements pulse vs pseudo_rigid: 0 trials; none "
+                                       "anywhere on the grid (duty_cycle up to 0.1)"));
   CHECK(summary["totals"]["stabilized_fraction"]["pulse"] ==
         summary["totals"]["stabilized_fraction"]["pseudo_rigid"]);
   const std::string cells = slurp(d.path + "/out/cells.csv");

@@ -9,10 +9,20 @@ import { mapReport } from './mapreport.js';
 
 const test = { historyPoints: 0 };
 
-function metricRows(a, b) {
+/// The rows worth reading: an objective term "mean(m)" that repeats the row m is left out,
+/// and so is the spectral radius when the study did not compute it (it reads 0, which would
+/// look perfect).
+function metricRows(a, b, stability = true) {
   const keys = [...new Set([...Object.keys(a ?? {}), ...Object.keys(b ?? {})])].sort();
-  return keys.map((k) => [k, a?.[k], b?.[k]]);
+  return keys.filter((k) => {
+    if (k === 'spectral_radius' && !stability) return false;
+    const m = /^mean\((.*)\)$/.exec(k);
+    return !(m && a?.[m[1]] === a?.[k] && b?.[m[1]] === b?.[k]);
+  }).map((k) => [k, a?.[k], b?.[k]]);
 }
+
+/// Whether a design's study computed the stride map's spectral radius.
+const computedStability = (d) => Boolean(d.stability?.method);
 
 /// Cost of every evaluation (feasible and infeasible apart) and the best feasible so far.
 function historyPlot(box, h) {
@@ -135,11 +145,11 @@ function studySection(box, stage, title, withPlayback = true) {
       htmlTable(['constraint', 'initial g', 'tuned g'], gs.map((g, i) => [labels[i] ?? g, h[g][0], d.constraints?.[i]])));
   }
   right.append(el('h3', { text: 'metrics over the scenarios' }),
-    htmlTable(['metric', 'initial', 'tuned'], [['cost', d.initial_cost, d.cost], ...metricRows(d.initial_metrics, d.metrics)]));
+    htmlTable(['metric', 'initial', 'tuned'], [['cost', d.initial_cost, d.cost], ...metricRows(d.initial_metrics, d.metrics, computedStability(d))]));
   if (d.validation) {
     const v = d.validation;
     right.append(el('h3', { text: `validation on ${Array.isArray(v.scenarios) ? v.scenarios.length : v.scenarios ?? 'held-out'} held-out scenarios` }),
-      htmlTable(['metric', 'initial', 'tuned'], [['cost', v.initial_cost, v.cost], ...metricRows(v.initial_metrics, v.metrics)]));
+      htmlTable(['metric', 'initial', 'tuned'], [['cost', v.initial_cost, v.cost], ...metricRows(v.initial_metrics, v.metrics, computedStability(d))]));
   }
   if (withPlayback && stage.initial && stage.tuned) {
     box.append(el('h3', { text: 'first scenario: initial vs tuned' }));
@@ -158,7 +168,7 @@ function stagedReport(box, D) {
     box.append(el('h3', { text: `fidelity gap: the first stage's design (${gap.first_stage}) and the final design, both in the last stage's model` }),
       htmlTable(['metric', 'first stage\'s design', 'final design'],
         [['cost', gap.first_stage_design.cost, gap.final_design?.cost],
-          ...metricRows(gap.first_stage_design.metrics, gap.final_design?.metrics)]));
+          ...metricRows(gap.first_stage_design.metrics, gap.final_design?.metrics, computedStability(d))]));
   }
   // Every stage's evaluations on one axis (each stage in its own model: costs differ by model).
   const xs = [], series = D.stages.map((st) => ({ label: `${st.name} cost`, values: [], points: true, size: 4 }));
