@@ -55,7 +55,8 @@ double check_pointer(io::JsonReader& e, const PlantPerturbation& p, const Pertur
                   "a pointer to a number of the scene (see scene.resolved.json), or " +
                       std::string(kTensor) + " for the whole inertia",
                   "\"" + p.pointer + "\", which names " +
-                      (target == nullptr ? std::string("nothing") : io::describe(*target)));
+                      (target == nullptr ? "nothing" + io::resolved_pointer_hint(p.pointer)
+                                         : io::describe(*target)));
   }
   if (const std::string* u = ignored_setting(c.unused, p.pointer)) {
     throw e.error("pointer",

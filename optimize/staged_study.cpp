@@ -97,7 +97,8 @@ std::vector<Parameter> study_parameters(io::JsonReader& r, const json& doc, cons
     if (par.pointer.empty() || target == nullptr || !target->is_number()) {
       throw io::InputError(r.file(), at + "/pointer",
                            "a pointer to a number of the scene format (see scene.resolved.json)",
-                           "\"" + par.pointer + "\", which names no number of a scene");
+                           "\"" + par.pointer + "\", which names no number of a scene" +
+                               io::resolved_pointer_hint(par.pointer));
     }
     const json& init = p.value("initial", json());
     par.initial = init.is_number() ? init.get<double>() : target->get<double>();

@@ -126,7 +126,8 @@ Parameter parse_parameter(io::JsonReader& p, const json& resolved,
   const json* target = io::find_pointer(resolved, par.pointer);
   if (par.pointer.empty() || target == nullptr || !target->is_number()) {
     throw p.error("pointer", "a pointer to a number of the scene format (see scene.resolved.json)",
-                  "\"" + par.pointer + "\", which names no number of a scene");
+                  "\"" + par.pointer + "\", which names no number of a scene" +
+                      io::resolved_pointer_hint(par.pointer));
   }
   // Tuning a number the model ignores would give a flat cost surface: refuse it.
   if (const std::string* u = ignored_setting(unused, par.pointer)) {

@@ -535,4 +535,19 @@ json scene_to_json(const scene::Scene& s) {
   return j;
 }
 
+std::string resolved_pointer_hint(const std::string& pointer) {
+  const std::string inertia = "/body/inertia";
+  if (pointer == inertia) return "; the resolved scene names it /body/inertia_tensor (a 3x3 array)";
+  if (pointer.size() == inertia.size() + 2 && pointer.rfind(inertia + "/", 0) == 0 &&
+      pointer.back() >= '0' && pointer.back() <= '2') {
+    const std::string k(1, pointer.back());
+    return "; the resolved scene names this principal moment /body/inertia_tensor/" + k + "/" + k;
+  }
+  if (pointer.rfind("/initial/attitude_deg", 0) == 0) {
+    return "; the resolved scene holds the start attitude as /initial/attitude_quaternion (a "
+           "study's scenarios tilt it with \"tilt_deg\")";
+  }
+  return "";
+}
+
 }  // namespace pronk::io

@@ -31,4 +31,9 @@ scene::Scene load_scene(const std::string& path, const std::vector<std::string>&
 /// reproduces s exactly.
 nlohmann::json scene_to_json(const scene::Scene& s);
 
+/// A pointer written in the scene file's form that the resolved scene (what studies, maps and
+/// perturbations bind to) spells otherwise, as a hint for an error message: "; the resolved
+/// scene names it /body/inertia_tensor/1/1" for "/body/inertia/1"; empty for any other.
+std::string resolved_pointer_hint(const std::string& pointer);
+
 }  // namespace pronk::io

@@ -84,8 +84,9 @@ void parse_axis_kind(io::JsonReader& r, const std::string& kind, const json& sce
       throw r.error(
           "pointer", "a pointer to a number of the resolved scene",
           "\"" + a.pointer + "\"" +
-              (a.pointer.empty() || target == nullptr ? " (no such value)"
-                                                      : " (" + io::describe(*target) + ")"));
+              (a.pointer.empty() || target == nullptr
+                   ? " (no such value" + io::resolved_pointer_hint(a.pointer) + ")"
+                   : " (" + io::describe(*target) + ")"));
     }
   } else if (kind == "duty_cycle") {
     a.kind = AxisKind::kDutyCycle;

@@ -97,6 +97,27 @@ TEST_CASE("a key given twice is bad input in every loader, naming the key", "[cl
       "each key once in an object");
 }
 
+TEST_CASE("a pointer in the scene file's form says what the resolved scene calls it",
+          "[cli][input]") {
+  // The docs write the inertia as three numbers; studies, maps and perturbations bind to
+  // the resolved scene, which holds the tensor.
+  TempDir d("input");
+  const std::string set = "/parameters/0/pointer=\"/body/inertia/1\"";
+  const std::string expected =
+      ": /parameters/0/pointer: expected a pointer to a number of the scene format (see "
+      "scene.resolved.json), found \"/body/inertia/1\", which names no number of a scene; the "
+      "resolved scene names this principal moment /body/inertia_tensor/1/1";
+  check_bad_input(cli_support::pronk(d, {"optimize", kStudy, "--set", set}), kStudy + expected);
+  check_bad_input(cli_support::pronk(d, {"optimize", kStaged, "--set", set}), kStaged + expected);
+  const std::string axis =
+      R"(/axes/1={"kind": "pointer", "pointer": "/body/inertia/0", "range": [1, 2], "count": 2})";
+  check_bad_input(cli_support::pronk(d, {"map", kMap, "--set", axis}),
+                  kMap +
+                      ": /axes/1/pointer: expected a pointer to a number of the resolved scene, "
+                      "found \"/body/inertia/0\" (no such value; the resolved scene names this "
+                      "principal moment /body/inertia_tensor/0/0)");
+}
+
 TEST_CASE("parameter and axis pointers nlohmann cannot resolve are bad input", "[cli][input]") {
   TempDir d("input");
   for (const std::string ptr : {"/controller/kp/", "/controller/kp/99999999999999999999999",
