@@ -17,6 +17,7 @@
 #include "io/write/atomic_file.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
+#include "optimize/progress.hpp"
 
 #ifndef PRONK_STUDIES_DIR
 #define PRONK_STUDIES_DIR "studies"
@@ -94,8 +95,13 @@ json run_peer(const std::string& name, const std::string& what, const BenchArgs&
 }
 
 void progress(const BenchArgs& a, const std::string& what) {
-  // One line per stage on a terminal (off when not a TTY or with --quiet).
-  if (!a.quiet && isatty(STDERR_FILENO)) std::fprintf(stderr, "bench: %s\n", what.c_str());
+  // One line per stage, with the time since the first, on a terminal or in a log (not with
+  // --quiet). The stages differ too much in cost for an estimate of the time left.
+  static const auto t0 = std::chrono::steady_clock::now();
+  if (a.quiet) return;
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::fprintf(stderr, "bench: %s (%s elapsed)\n", what.c_str(),
+               optimize::format_duration(s).c_str());
 }
 
 bench::BenchConfig bench_config(const BenchArgs& args) {

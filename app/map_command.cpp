@@ -116,7 +116,7 @@ int run_map_command(const MapArgs& args) {
         [&](const m::MpiSession& session, const m::MapStudy& st) {
           m::MpiRunner runner(session);
           opt.runner = &runner;
-          opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+          opt.progress = optimize::progress_style(args.quiet);
           const int rc = run_reporting_errors([&] {
             opt.verify_seed = verify_seed(args.verify, args.resume, args.quiet);
             std::signal(SIGINT, on_map_sigint);
@@ -135,7 +135,7 @@ int run_map_command(const MapArgs& args) {
   const m::MapStudy st = m::load_map_study(args.study_path, args.overrides);
   const unsigned hw = std::thread::hardware_concurrency();
   opt.threads = args.threads > 0 ? args.threads : (hw > 0 ? static_cast<int>(hw) : 1);
-  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+  opt.progress = optimize::progress_style(args.quiet);
   std::signal(SIGINT, on_map_sigint);
   const m::MapOutcome o = m::run_map(st, opt);
   std::signal(SIGINT, SIG_DFL);

@@ -75,7 +75,7 @@ optimize::StudyRunOptions run_options(const OptimizeArgs& args, optimize::JobFar
   opt.verify = args.verify.sample;
   opt.verify_seed = verify_seed(args.verify, args.resume, args.quiet);
   opt.out_dir = args.out_dir;
-  opt.progress = !args.quiet && ::isatty(STDERR_FILENO);
+  opt.progress = optimize::progress_style(args.quiet);
   opt.stop_flag = &g_stop;
   g_stop.store(false);
   std::signal(SIGINT, on_sigint);

@@ -428,8 +428,13 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
   remove_stale_temporaries(o.out_dir, 0);  // each stage cleans its own directory
   std::map<std::string, double> initial;
   for (const auto& p : st.parameters) initial[p.name] = p.initial;
+  const Progress overall(opt.progress, "", 0);
   for (size_t k = 0; k < st.stages.size(); ++k) {
     bool stopped = false;
+    overall.note(st.name + ": stage " + std::to_string(k + 1) + "/" +
+                 std::to_string(st.stages.size()) + " " + st.stages[k].name + " (" +
+                 st.stages[k].model + " model), " + format_duration(staged_now_s() - t0) +
+                 " elapsed");
     o.stages.push_back(
         run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
     if (stopped) {

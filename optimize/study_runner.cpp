@@ -131,13 +131,12 @@ class StudyProblem final : public Problem {
 class JournalObserver final : public EvaluationObserver {
  public:
   JournalObserver(const StudyProblem& problem, JournalWriter& journal, TimingsFile& timings,
-                  long recorded, std::vector<std::string> names, long max_evals, bool progress)
+                  long recorded, std::vector<std::string> names, Progress& progress)
       : problem_(problem),
         journal_(journal),
         timings_(timings),
         recorded_(recorded),
         names_(std::move(names)),
-        max_evals_(max_evals),
         progress_(progress) {}
   void on_evaluation(long index, const std::vector<double>& x, const ProblemEvaluation& e,
                      const char* purpose) override {
@@ -156,12 +155,8 @@ class JournalObserver final : public EvaluationObserver {
       timings_.write(index, full);  // first: a kill between the two leaves a spare line
       journal_.append(journal_record(index, purpose, full, names_));
     }
-    if (progress_ && (now_s() - last_print_ > 0.2 || index + 1 >= max_evals_)) {
-      last_print_ = now_s();
-      std::fprintf(stderr, "\r  evaluation %ld/%ld  best feasible cost %s   ", index + 1,
-                   max_evals_, std::isfinite(best_) ? std::to_string(best_).c_str() : "(none yet)");
-      std::fflush(stderr);
-    }
+    progress_.update(index + 1, "best feasible cost " +
+                                    (std::isfinite(best_) ? std::to_string(best_) : "(none yet)"));
   }
 
  private:
@@ -170,10 +165,8 @@ class JournalObserver final : public EvaluationObserver {
   TimingsFile& timings_;
   long recorded_;
   std::vector<std::string> names_;
-  long max_evals_;
-  bool progress_;
+  Progress& progress_;
   double best_ = INFINITY;
-  double last_print_ = 0.0;
 };
 
 json metrics_json(const Evaluation& e) {
@@ -406,13 +399,15 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   JournalWriter journal(journal_path, journal_header(st, evaluator),
                         recorded > 0 ? prepare_for_append(journal_path, previous.end) : "");
   StudyProblem problem(evaluator, std::move(previous.records));
+  Progress progress(opt.progress, st.name + ": evaluation", st.optimizer.max_evaluations,
+                    recorded);
   JournalObserver observer(problem, journal, timings, recorded, evaluator.variable_names(),
-                           st.optimizer.max_evaluations, opt.progress);
+                           progress);
 
   OptimizerOptions oo = st.optimizer;
   oo.stop_flag = opt.stop_flag;
   o.result = run_optimizer(problem, oo, &observer);
-  if (opt.progress) std::fprintf(stderr, "\n");
+  progress.finish();
   o.replayed = problem.replayed();
 
   // The starting and the tuned design, fully evaluated (deterministic: same numbers as recorded).
@@ -421,6 +416,11 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                                                            : o.result.best_x);
   std::optional<Evaluator> val;
   if (st.validation) {
+    const Progress validation(opt.progress, "", 0);
+    validation.note("  " + st.name + ": validating on " +
+                    std::to_string(st.validation->scenarios.size()) +
+                    " held-out trials (initial and tuned design), " +
+                    format_duration(now_s() - t0) + " elapsed");
     val.emplace(validation_evaluator(st, opt.threads, opt.farm));
     o.validated = true;
     o.validation_initial = val->evaluate_full(o.initial.unit);
@@ -432,6 +432,11 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
       o.validation_nominal =
           validation_evaluator(nominal, opt.threads, opt.farm).evaluate_full(o.best.unit);
     }
+    char stabilized[32];
+    std::snprintf(stabilized, sizeof stabilized, "%.1f %%",
+                  100.0 * o.validation_best.aggregated["stabilized"]);
+    validation.note("  " + st.name + ": validated in " + format_duration(validation.elapsed()) +
+                    ", tuned design stabilized in " + stabilized + " of them");
   }
   o.wall_time = now_s() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed

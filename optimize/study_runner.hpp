@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "optimize/progress.hpp"
 #include "optimize/study.hpp"
 
 namespace pronk::optimize {
@@ -18,7 +19,7 @@ struct StudyRunOptions {
   long verify = -1;
   std::uint64_t verify_seed = 0;
   std::string out_dir;                           ///< overrides the study's output directory
-  bool progress = false;                         ///< one throttled progress line on stderr
+  ProgressStyle progress = ProgressStyle::kOff;  ///< progress on stderr (progress.hpp)
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C
   /// The evaluations' scenario runs on other processes (MPI ranks); nullptr: threads.
   JobFarm* farm = nullptr;

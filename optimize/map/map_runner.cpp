@@ -12,6 +12,7 @@
 #include <functional>
 #include <future>
 #include <map>
+#include <memory>
 #include <mutex>
 
 #include "io/load/input_error.hpp"
@@ -85,26 +86,27 @@ std::string MapRunOptions::validate() const {
 
 namespace {
 
-/// The progress line of a map on stderr, at most every 0.2 s (and at the end of a phase).
+/// The progress of a map on stderr (progress.hpp), one count per phase (cells, then the
+/// boundary rows' bisection).
 class MapProgress {
  public:
-  MapProgress(const MapStudy& st, const MapRunOptions& options, double t0)
-      : st_(st), options_(options), t0_(t0) {}
+  MapProgress(const MapStudy& st, const MapRunOptions& options) : st_(st), options_(options) {}
   void operator()(const char* what, long n, long total) {
-    if (!options_.progress) return;
-    const double t = now_s();
-    if (t - last_print_ < 0.2 && n < total) return;
-    last_print_ = t;
-    std::fprintf(stderr, "\rmap %s: %s %ld/%ld (%.0f s)", st_.name.c_str(), what, n, total,
-                 t - t0_);
-    if (n >= total) std::fprintf(stderr, "\n");
+    if (!line_ || phase_ != what) {
+      if (line_) line_->finish();
+      phase_ = what;
+      line_ = std::make_unique<Progress>(options_.progress, "map " + st_.name + ": " + what,
+                                         total);
+    }
+    line_->update(n);
+    if (n >= total) line_->finish();
   }
 
  private:
   const MapStudy& st_;
   const MapRunOptions& options_;
-  double t0_;
-  double last_print_ = 0.0;
+  std::string phase_;
+  std::unique_ptr<Progress> line_;
 };
 
 /// The run's shared state: the study, its options, the runner, the journal.
@@ -301,7 +303,7 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   // an fsync about 6 ms (a power cut loses at most that much, which --resume recomputes).
   JournalWriter journal(journal_path, map_journal_header(st),
                         js.exists ? prepare_for_append(journal_path, js.end) : "", 0.5);
-  MapProgress progress(st, options, t0);
+  MapProgress progress(st, options);
   const MapRun run{st, options, runner, journal, progress, t0};
 
   std::vector<CellResult> cells(static_cast<size_t>(st.cells()));

@@ -14,6 +14,7 @@
 
 #include "optimize/map/map_engine.hpp"
 #include "optimize/map/map_study.hpp"
+#include "optimize/progress.hpp"
 
 namespace pronk::optimize::map {
 
@@ -63,7 +64,7 @@ struct MapRunOptions {
   long verify = -1;
   std::uint64_t verify_seed = 0;
   std::string out_dir;    ///< default: the study's
-  bool progress = false;  ///< a throttled progress line on stderr
+  ProgressStyle progress = ProgressStyle::kOff;  ///< progress on stderr (progress.hpp)
   bool figures = true;    ///< render the SVG heat maps (the .gp scripts are always written)
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C: stop after the running tasks
   /// Empty when valid, else which field, its value and the rule.

@@ -124,6 +124,10 @@ TEST_CASE("map runs the robot in the full model: pulse vs pseudo_rigid",
   // The two models judge this trial alike (see the engine test for the reasons).
   CHECK(summary["totals"]["disagreements"] == 0);
   CHECK(summary["disagreement"]["first_disagreement"].is_null());
+  // stderr is a file: the progress is plain lines with the time elapsed (the last: done).
+  CHECK_THAT(err, Catch::Matchers::Contains(": cells 1/1, ") &&
+                      Catch::Matchers::Contains(" elapsed, done"));
+  CHECK(err.find('\r') == std::string::npos);
   CHECK_THAT(slurp(d.path + "/stdout.txt"),
              Catch::Matchers::Contains("disagreements pulse vs pseudo_rigid: 0 trials; none "
                                        "anywhere on the grid (duty_cycle up to 0.1)"));

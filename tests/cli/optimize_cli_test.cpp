@@ -161,3 +161,29 @@ TEST_CASE("the committed study results reproduce, and study 2 meets its mission"
   // The starting design (seed-style gains) does not.
   CHECK(v["initial_metrics"]["stabilized"].get<double>() < 0.5);
 }
+
+TEST_CASE("optimize into a log prints progress lines with the time elapsed and left",
+          "[cli][optimize][progress]") {
+  // stderr is a file here, not a terminal: plain lines, the first and the last always (and
+  // one every 30 s between), so what the log holds does not depend on the machine's speed.
+  Dir d;
+  std::string err;
+  REQUIRE(pronk("optimize " + kStudies + "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
+                    "--out " + d.path + "/o",
+                d.path, &err) == 0);
+  INFO(err);
+  CHECK(err.find('\r') == std::string::npos);
+  CHECK(err.find("study2_legged_pulse_duty50: evaluation 1/6, ") != std::string::npos);
+  CHECK(err.find(" elapsed, about ") != std::string::npos);
+  CHECK(err.find(" left, best feasible cost ") != std::string::npos);
+  CHECK(err.find("study2_legged_pulse_duty50: evaluation 6/6, ") != std::string::npos);
+  CHECK(err.find(" elapsed, done, best feasible cost ") != std::string::npos);
+  CHECK(err.find("study2_legged_pulse_duty50: validating on 64 held-out trials") !=
+        std::string::npos);
+  CHECK(err.find("study2_legged_pulse_duty50: validated in ") != std::string::npos);
+  // -q: nothing.
+  REQUIRE(pronk("optimize " + kStudies + "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
+                    "-q --out " + d.path + "/q",
+                d.path, &err) == 0);
+  CHECK(err.empty());
+}
