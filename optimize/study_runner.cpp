@@ -185,9 +185,10 @@ std::string figure_history() {
 }
 
 std::string figure_compare(const std::string& title) {
-  return "set terminal svg size 900,640 dynamic enhanced font 'Helvetica,11'\n"
+  // Position errors, height and every attitude angle: a design can fail on any of them.
+  return "set terminal svg size 900,900 dynamic enhanced font 'Helvetica,11'\n"
          "set output 'compare.svg'\nset datafile separator ','\nset grid\n"
-         "set multiplot layout 2,2 title '" +
+         "set multiplot layout 3,2 title '" +
          title +
          "' noenhanced\n"
          "set xlabel 'time [s]'\n"
@@ -203,6 +204,12 @@ std::string figure_compare(const std::string& title) {
          "set title 'x - x_d'; set ylabel 'error [m]'\n"
          "plot 'initial/trajectory.csv' every ::1 u 1:($2-$14) w l t 'initial', "
          "'tuned/trajectory.csv' every ::1 u 1:($2-$14) w l t 'tuned'\n"
+         "set title 'Pitch'; set ylabel 'pitch [deg]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:9 w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:9 w l t 'tuned'\n"
+         "set title 'Yaw'; set ylabel 'yaw [deg]'\n"
+         "plot 'initial/trajectory.csv' every ::1 u 1:10 w l t 'initial', "
+         "'tuned/trajectory.csv' every ::1 u 1:10 w l t 'tuned'\n"
          "unset multiplot\n";
 }
 

@@ -181,6 +181,11 @@ TEST_CASE("optimize into a log prints progress lines with the time elapsed and l
   CHECK(err.find("study2_legged_pulse_duty50: validating on 64 held-out trials") !=
         std::string::npos);
   CHECK(err.find("study2_legged_pulse_duty50: validated in ") != std::string::npos);
+  // compare.svg plots every attitude angle, pitch and yaw beside roll (trajectory.csv's 8-10).
+  const std::string gp = slurp(d.path + "/o/compare.gp");
+  for (const char* plot : {"u 1:8 w l", "u 1:9 w l", "u 1:10 w l", "'Pitch'", "'Yaw'"}) {
+    CHECK(gp.find(plot) != std::string::npos);
+  }
   // -q: nothing.
   REQUIRE(pronk("optimize " + kStudies + "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
                     "-q --out " + d.path + "/q",
