@@ -137,6 +137,7 @@ function playbackArea(box, D, c, u, hovered) {
     const player = new Player(area, {
       t0: scene.t0, t1: scene.t1, strideTimes: scene.strideTimes, onTime: (t) => scene.update(t),
       onFollow: (on) => { scene.viewer.follow = on; scene.viewer.lastFollow = null; },
+      follow: scene.viewer.follow,
     });
     current.scene = scene;
     current.player = player;

@@ -3,7 +3,7 @@
 import { el } from './data.js';
 
 export class Player {
-  constructor(container, { t0, t1, strideTimes = [], onTime, onFollow, onArrows }) {
+  constructor(container, { t0, t1, strideTimes = [], onTime, onFollow, follow = false, onArrows }) {
     this.t0 = t0; this.t1 = t1; this.t = t0; this.speed = 1; this.playing = false;
     this.strideTimes = strideTimes; this.onTime = onTime;
     this.play = el('button', { class: 'play', text: '▶', title: 'play / pause (space)', onclick: () => this.toggle() });
@@ -22,6 +22,7 @@ export class Player {
     bits.push(this.slider, this.label, speed);
     if (onFollow) {
       const f = el('input', { type: 'checkbox' });
+      f.checked = follow;
       f.addEventListener('change', () => onFollow(f.checked));
       bits.push(el('label', {}, f, ' follow'));
     }

@@ -112,6 +112,7 @@ function playback(box, initial, tuned) {
     t0: Math.min(sa.t0, sb.t0), t1: Math.max(sa.t1, sb.t1), strideTimes: sb.strideTimes,
     onTime: (t) => { sa.update(t); sb.update(t); },
     onFollow: (on) => { for (const s of [sa, sb]) { s.viewer.follow = on; s.viewer.lastFollow = null; } },
+    follow: sb.viewer.follow,
   });
   return { scene: sb, player };
 }

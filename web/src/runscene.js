@@ -23,10 +23,15 @@ export function runScene(container, run, color) {
   const half = Math.max(model.extent, 0.6 * Math.max(hi[0] - lo[0], hi[1] - lo[1])) + 0.3;
   viewer.addGround((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, half);
   const e = model.extent;
-  const c = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, robot ? 0.5 * e : 0.3 * e);
+  // A robot: the camera frames it where it starts and follows it (the follow box, on by
+  // default), so it is on screen at every time whatever the path's length. A mechanism: the
+  // middle of its motion, fixed.
+  const c = robot ? new THREE.Vector3(xs[0], ys[0], 0.5 * e)
+    : new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, 0.3 * e);
   viewer.controls.target.copy(c);
-  const d = Math.min(half, 2.5 * e);  // long paths: frame the middle, zoom or follow for the rest
+  const d = robot ? 2.5 * e : Math.min(half, 2.5 * e);
   viewer.camera.position.set(c.x - 0.9 * d, c.y - 1.6 * d, c.z + 0.8 * d);
+  viewer.follow = robot;
   viewer.controls.update();
   const strideTimes = robot && run.strides ? columns(run.strides).t_touchdown.slice() : [];
   let tracked = null;
@@ -52,6 +57,8 @@ export function installTestHook(scene, player, extra = {}) {
   window.pronkTest = {
     t0: scene.t0, t1: scene.t1, source: scene.source,
     setTime(t) { player.seek(t); },
+    follow: () => scene.viewer.follow,
+    setFollow(on) { scene.viewer.follow = on; scene.viewer.lastFollow = null; },
     tracked: () => scene.tracked(),
     project: (p) => scene.viewer.project(p),
     pixel: (x, y) => scene.viewer.pixel(x, y),

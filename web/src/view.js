@@ -29,6 +29,7 @@ function main() {
     t0: scene.t0, t1: scene.t1, strideTimes: scene.strideTimes,
     onTime: (t) => { scene.update(t); if (linked) linked.syncTo(t); },
     onFollow: (on) => { scene.viewer.follow = on; scene.viewer.lastFollow = null; },
+    follow: scene.viewer.follow,
     onArrows: D.kind === 'robot' ? (on) => { scene.model.state.arrows = on; player.seek(player.t); } : null,
   });
   linked = (D.kind === 'robot' ? robotPlots : mechanismPlots)(plots, D, (t) => player.seek(t));

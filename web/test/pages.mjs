@@ -102,6 +102,25 @@ for (const p of pages) {
   if (p.name !== 'map' || hasScene) {
     const hook = await page.evaluate(() => ({ t0: pronkTest.t0, t1: pronkTest.t1, source: pronkTest.source }));
     const dir = p.dir ?? null;
+    // A robot is framed at its start and followed (the default): inside the 3-D view's
+    // frame at the first and at the last sample, whatever the path's length.
+    if (await page.evaluate(() => pronkTest.follow())) {
+      const framed = [];
+      for (const t of [hook.t0, hook.t1]) {
+        framed.push(await page.evaluate((tt) => {
+          pronkTest.setTime(tt);
+          const c = pronkTest.canvas(), s = pronkTest.tracked().screen;
+          return { x: s.x, y: s.y, w: c.width, h: c.height };
+        }, t));
+      }
+      check(p.name, 'the robot is inside the frame at t0 and at the last sample',
+        framed.every((f) => f.x > 0 && f.x < f.w && f.y > 0 && f.y < f.h),
+        framed.map((f) => `(${f.x.toFixed(0)}, ${f.y.toFixed(0)}) in ${f.w} x ${f.h}`).join(', '));
+      // The motion checks below need a fixed camera.
+      await page.evaluate((tt) => { pronkTest.setTime(tt); pronkTest.setFollow(false); }, hook.t0);
+    } else {
+      check(p.name, 'follow is on for robots only (a mechanism page keeps its camera)', p.name === 'mechanism', 'follow is off');
+    }
     const ts = p.times.map((f) => hook.t0 + f * (hook.t1 - hook.t0));
     const drawn = [];
     for (const t of ts) {
