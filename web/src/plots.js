@@ -8,6 +8,31 @@ export { palette };
 
 function widthOf(container) { return Math.max(240, container.clientWidth - 8); }
 
+/// The fewest labelled ticks any linear axis of the page's plots has had (the browser test).
+let fewestTicks = Infinity;
+export function fewestAxisTicks() { return fewestTicks; }
+
+/// Ticks of a linear axis: uPlot's multiples of its increment, the increment halved until at
+/// least two fall in the range (a short plot of a wide range would otherwise show one, "0").
+function atLeastTwoTicks(u, axisIdx, min, max, incr) {
+  let step = incr;
+  let ticks = [];
+  for (let k = 0; k < 12 && ticks.length < 2 && step > 0; k++, step /= 2) {
+    ticks = [];
+    for (let v = Math.ceil(min / step) * step; v <= max + 1e-9 * step; v += step) {
+      ticks.push(Number(v.toPrecision(12)));
+    }
+  }
+  if (ticks.length < 2) ticks = [min, max];
+  fewestTicks = Math.min(fewestTicks, ticks.length);
+  return ticks;
+}
+
+/// Tick labels with the digits the ticks need, no more.
+function tickLabels(u, splits) {
+  return splits.map((v) => (v === 0 ? '0' : String(Number(v.toPrecision(6)))));
+}
+
 /// A line chart: x values and series [{label, values, color, dash, points, scale}].
 /// `opts`: {title, xlabel, ylabel, height, onSeek(x), points: true for markers only}.
 export function linePlot(container, x, series, opts = {}) {
@@ -17,7 +42,9 @@ export function linePlot(container, x, series, opts = {}) {
   // y: 'asinh' (symmetric log: spans signs and decades) or 'log'.
   if (opts.yscale === 'asinh') scales.y = { distr: 4, asinh: opts.asinh ?? 1 };
   if (opts.yscale === 'log') scales.y = { distr: 3 };
-  const axes = [{ label: opts.xlabel ?? 't [s]', size: 36 }, { label: opts.ylabel ?? '', size: 56 }];
+  const linear = { splits: atLeastTwoTicks, values: tickLabels };
+  const axes = [{ label: opts.xlabel ?? 't [s]', size: 36, ...linear },
+    { label: opts.ylabel ?? '', size: 56, ...(opts.yscale ? {} : linear) }];
   if (opts.xticks) {  // category axis: labels at 0, 1, 2, ...
     axes[0].splits = () => opts.xticks.map((_, i) => i);
     axes[0].values = () => opts.xticks;
@@ -28,7 +55,7 @@ export function linePlot(container, x, series, opts = {}) {
   if (opts.yrange) scales.y = { range: opts.yrange };
   if (series.some((s) => s.scale === 'y2')) {
     scales.y2 = {};
-    axes.push({ scale: 'y2', side: 1, label: opts.y2label ?? '', grid: { show: false }, size: 56 });
+    axes.push({ scale: 'y2', side: 1, label: opts.y2label ?? '', grid: { show: false }, size: 56, ...linear });
   }
   const u = new uPlot({
     title: opts.title, width: widthOf(container), height: opts.height ?? 170, padding,

@@ -2,7 +2,7 @@
 // validation, initial vs tuned playback), a staged study (stages and the fidelity gap), or
 // a map (stabilized-fraction heat map with the boundary, hover details, click to play).
 import { pageData, el, fmt, htmlTable, columns, ramp } from './data.js';
-import { linePlot } from './plots.js';
+import { linePlot, fewestAxisTicks } from './plots.js';
 import { runScene, installTestHook } from './runscene.js';
 import { Player } from './player.js';
 import { mapReport } from './mapreport.js';
@@ -206,7 +206,7 @@ function main() {
   const extra = { historyPoints: () => test.historyPoints };
   if (D.kind === 'map') return;  // the map's playback installs the hook of the trial on show
   if (played) installTestHook(played.scene, played.player, extra);
-  else window.pronkTest = extra;
+  else window.pronkTest = { ...extra, fewestAxisTicks };
 }
 
 main();

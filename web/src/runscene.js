@@ -3,6 +3,7 @@ import { Viewer3D, THREE } from './viewer3d.js';
 import { addRobot, robotSource } from './robot3d.js';
 import { addMechanism } from './mechanism3d.js';
 import { columns } from './data.js';
+import { fewestAxisTicks } from './plots.js';
 
 /// Builds the 3-D view of `run` in `container`; returns {viewer, update(t), t0, t1, strideTimes, ...}.
 export function runScene(container, run, color) {
@@ -58,6 +59,7 @@ export function installTestHook(scene, player, extra = {}) {
     t0: scene.t0, t1: scene.t1, source: scene.source,
     setTime(t) { player.seek(t); },
     follow: () => scene.viewer.follow,
+    fewestAxisTicks,
     setFollow(on) { scene.viewer.follow = on; scene.viewer.lastFollow = null; },
     tracked: () => scene.tracked(),
     project: (p) => scene.viewer.project(p),

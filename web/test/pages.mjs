@@ -158,6 +158,10 @@ for (const p of pages) {
     check(p.name, 'the body was drawn where it was (the pixel changed after it left)',
       back.join() !== drawn[0].here.join(), `${drawn[0].here} then ${back}`);
   }
+  // Every linear plot axis on the page has at least two labelled ticks (a scale to read).
+  const ticks = await page.evaluate(() => (pronkTest.fewestAxisTicks ? pronkTest.fewestAxisTicks() : null));
+  check(p.name, 'every plot axis has at least two labelled ticks',
+    ticks !== null && (Number.isFinite(ticks) || p.name === 'map') && !(ticks < 2), `fewest ${ticks}`);
   if (p.evaluations !== undefined) {
     const n = await page.evaluate(() => pronkTest.historyPoints());
     check(p.name, 'history points = journal evaluations', n === p.evaluations, `${n} vs ${p.evaluations}`);
