@@ -29,6 +29,9 @@ function cellDetails(c, i, models, a0, a1) {
   return lines.join('\n');
 }
 
+/// The rows the boundary line was last drawn through (the browser test).
+const drawnRows = [];
+
 export function mapReport(box, D) {
   const s = D.summary;
   const c = columns(D.cells);
@@ -61,15 +64,23 @@ export function mapReport(box, D) {
       }
     }
     if (bnd && bnd.boundary) {
+      // Only rows with a boundary: a row where no value was good has none, and the line
+      // breaks there instead of running through it.
       ctx.strokeStyle = '#000';
       ctx.lineWidth = 3;
       ctx.beginPath();
-      for (let r = 0; r < bnd.length; r++) {
-        const xi = indexOf(a0.values, bnd.boundary[r]);
+      drawnRows.length = 0;
+      let open = false;
+      for (let r = 0; r < bnd.row.length; r++) {
+        const b = bnd.boundary[r];
+        if (bnd.status[r] === 'none_good' || b === null || !Number.isFinite(Number(b))) { open = false; continue; }
+        drawnRows.push(bnd.row[r]);
+        const xi = indexOf(a0.values, Number(b));
         const px = u.valToPos(Math.min(ncol - 0.5, Math.max(-0.5, xi)), 'x', true);
         for (const dy of [-0.5, 0.5]) {
           const py = u.valToPos(bnd.row[r] + dy, 'y', true);
-          if (r === 0 && dy < 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+          if (!open) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+          open = true;
         }
       }
       ctx.stroke();
@@ -100,9 +111,17 @@ export function mapReport(box, D) {
     tip.style.top = `${e.clientY + 14}px`;
   });
   u.over.addEventListener('mouseleave', () => { tip.style.display = 'none'; });
-  // Legend of the colour ramp.
-  box.append(el('div', { class: 'sub' }, 'fraction stabilized: ',
-    ...[0, 0.25, 0.5, 0.75, 1].map((f) => { const sw = el('span', { text: ` ${f} ` }); sw.style.background = ramp(f); sw.style.color = f > 0.6 ? '#000' : '#fff'; return sw; })));
+  // Key: the colour ramp in readable swatches, the boundary line and the disagreement frame.
+  const swatch = (text, style) => {
+    const sw = el('span', { text });
+    Object.assign(sw.style, { display: 'inline-block', minWidth: '3.2em', padding: '4px 8px', margin: '0 2px',
+      textAlign: 'center', fontSize: '14px', ...style });
+    return sw;
+  };
+  box.append(el('div', { class: 'key' }, el('strong', { text: 'key: ' }), 'fraction of trials stabilized ',
+    ...[0, 0.25, 0.5, 0.75, 1].map((f) => swatch(String(f), { background: ramp(f), color: f > 0.6 ? '#000' : '#fff' })),
+    ' ', swatch('boundary', { borderBottom: '3px solid #000' }),
+    ' ', swatch('models disagree', { outline: '2px solid #ff4d4d', outlineOffset: '-2px' })));
   const played = playbackArea(box, D, c, u, hovered);
   if (bnd) {
     box.append(el('h3', { text: 'boundary per row' }),
@@ -116,7 +135,7 @@ function playbackArea(box, D, c, u, hovered) {
   box.append(el('h3', { text: 'trial playback' }));
   if (!pb || !pb.cells) {
     box.append(el('p', { class: 'note', text: pb?.skipped ?? 'no playback.json: this map was written before pronk stored one trial per cell.' }));
-    window.pronkTest = { mapCells: () => c.cell.length };
+    window.pronkTest = { mapCells: () => c.cell.length, boundaryRows: () => drawnRows.slice() };
     return null;
   }
   const caption = el('div', { class: 'caption' });
@@ -142,7 +161,7 @@ function playbackArea(box, D, c, u, hovered) {
     current.scene = scene;
     current.player = player;
     // The test hook follows the trial on show.
-    installTestHook(scene, player, { mapCells: () => c.cell.length, playedCell: () => cell.cell });
+    installTestHook(scene, player, { mapCells: () => c.cell.length, playedCell: () => cell.cell, boundaryRows: () => drawnRows.slice() });
   };
   u.over.addEventListener('click', () => { const i = hovered(); if (i >= 0) play(i); });
   play(0);

@@ -162,6 +162,15 @@ for (const p of pages) {
   const ticks = await page.evaluate(() => (pronkTest.fewestAxisTicks ? pronkTest.fewestAxisTicks() : null));
   check(p.name, 'every plot axis has at least two labelled ticks',
     ticks !== null && (Number.isFinite(ticks) || p.name === 'map') && !(ticks < 2), `fewest ${ticks}`);
+  if (p.name === 'map') {
+    // The boundary line runs through exactly the rows that have a boundary (not none_good).
+    const [head, ...rows] = fs.readFileSync(`${work}/map/boundary.csv`, 'utf8').trim().split('\n').map((l) => l.split(','));
+    const want = rows.filter((r) => r[head.indexOf('status')] !== 'none_good').map((r) => Number(r[head.indexOf('row')]));
+    const drawnRows = await page.evaluate(() => pronkTest.boundaryRows());
+    check(p.name, 'the boundary line is drawn through the rows with a boundary, and only those',
+      JSON.stringify(drawnRows) === JSON.stringify(want),
+      `drawn ${JSON.stringify(drawnRows)}, rows with a boundary ${JSON.stringify(want)} of ${rows.length}`);
+  }
   if (p.evaluations !== undefined) {
     const n = await page.evaluate(() => pronkTest.historyPoints());
     check(p.name, 'history points = journal evaluations', n === p.evaluations, `${n} vs ${p.evaluations}`);
