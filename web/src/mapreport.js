@@ -4,6 +4,7 @@
 import uPlot from 'uplot';
 import { el, fmt, columns, ramp, htmlTable } from './data.js';
 import { runScene, installTestHook } from './runscene.js';
+import { widthOf } from './plots.js';
 import { Player } from './player.js';
 
 // Fractional index of value v among sorted axis values (for the boundary line).
@@ -90,7 +91,7 @@ export function mapReport(box, D) {
   const tickVals = (values) => (u, splits) => splits.map((i) => (values[Math.round(i)] !== undefined ? fmt(values[Math.round(i)], 3) : ''));
   const step = (n) => Math.max(1, Math.ceil(n / 12));
   const u = new uPlot({
-    title: `stabilized fraction (${primary})`, width: Math.max(320, box.clientWidth - 8), height: Math.max(220, 60 * nrow + 80),
+    title: `stabilized fraction (${primary})`, width: Math.max(320, widthOf(box)), height: Math.max(220, 60 * nrow + 80),
     scales: { x: { time: false, range: [-0.5, ncol - 0.5] }, y: { range: [-0.5, nrow - 0.5] } },
     axes: [{ label: `${a0.name} [${a0.unit}]`, splits: () => a0.values.map((_, i) => i).filter((i) => i % step(ncol) === 0), values: tickVals(a0.values) },
       { label: a1 ? `${a1.name} [${a1.unit}]` : '', splits: () => (a1 ? a1.values.map((_, i) => i).filter((i) => i % step(nrow) === 0) : [0]), values: a1 ? tickVals(a1.values) : () => [''], size: 60 }],

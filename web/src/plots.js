@@ -6,7 +6,12 @@ import { el } from './data.js';
 const palette = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
 export { palette };
 
-function widthOf(container) { return Math.max(240, container.clientWidth - 8); }
+/// The plot width that fits the container's content box (clientWidth includes its padding).
+export function widthOf(container) {
+  const cs = getComputedStyle(container);
+  const content = container.clientWidth - parseFloat(cs.paddingLeft || 0) - parseFloat(cs.paddingRight || 0);
+  return Math.max(240, content - 8);
+}
 
 /// The fewest labelled ticks any linear axis of the page's plots has had (the browser test).
 let fewestTicks = Infinity;

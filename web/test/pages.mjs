@@ -162,6 +162,8 @@ for (const p of pages) {
   const ticks = await page.evaluate(() => (pronkTest.fewestAxisTicks ? pronkTest.fewestAxisTicks() : null));
   check(p.name, 'every plot axis has at least two labelled ticks',
     ticks !== null && (Number.isFinite(ticks) || p.name === 'map') && !(ticks < 2), `fewest ${ticks}`);
+  const widths = await page.evaluate(() => ({ page: document.documentElement.scrollWidth, window: window.innerWidth }));
+  check(p.name, 'no horizontal scrolling', widths.page <= widths.window, `${widths.page} px wide in a ${widths.window} px window`);
   if (p.name === 'map') {
     // The boundary line runs through exactly the rows that have a boundary (not none_good).
     const [head, ...rows] = fs.readFileSync(`${work}/map/boundary.csv`, 'utf8').trim().split('\n').map((l) => l.split(','));
