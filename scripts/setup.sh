@@ -8,6 +8,8 @@ pkgs=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-d
 # The Python module (pybind11 over Debian's python3) and what its tests and examples use.
 pkgs+=(pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy python3-matplotlib
        python3-optuna)
+# `pip install .` (pyproject.toml: setuptools builds it, offline) and its test in a venv.
+pkgs+=(python3-pip python3-venv python3-setuptools python3-wheel)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
 # The optional MuJoCo peer of `pronk bench` (the CVODE peer uses the SUNDIALS installed
