@@ -19,7 +19,9 @@ case "$where" in
   "$work/venv/"*) echo "pronk imported from $where" ;;
   *) echo "pronk imported from $where, not from the venv" >&2; exit 1 ;;
 esac
-"$work/venv/bin/pip" show pronk | grep -q '^Requires: numpy' || { echo "numpy not declared" >&2; exit 1; }
+# Read pip's whole answer first: grep -q in a pipe would end early and break pip's pipe.
+show=$("$work/venv/bin/pip" show pronk)
+grep -q '^Requires: numpy' <<< "$show" || { echo "numpy not declared: $show" >&2; exit 1; }
 MPLBACKEND=Agg "$work/venv/bin/python" "$src/examples/notebook_simulate_plot.py" "$work/nb.png"
 test -s "$work/nb.png"
 "$work/venv/bin/python" "$src/examples/scipy_minimize.py" --maxiter 20
