@@ -14,9 +14,9 @@
 
 #include "app/bench/figures.hpp"
 #include "app/bench/report.hpp"
-#include "io/write/atomic_file.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
+#include "io/write/atomic_file.hpp"
 #include "optimize/progress.hpp"
 
 #ifndef PRONK_STUDIES_DIR

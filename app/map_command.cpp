@@ -11,12 +11,12 @@
 
 #include "app/mpi_command.hpp"
 #include "app/view_command.hpp"
+#include "io/load/input_error.hpp"
+#include "io/write/atomic_file.hpp"
 #include "optimize/map/map_playback.hpp"
 #include "optimize/map/map_runner.hpp"
 #include "optimize/map/map_study.hpp"
 #include "optimize/map/mpi_runner.hpp"
-#include "io/write/atomic_file.hpp"
-#include "io/load/input_error.hpp"
 
 namespace pronk::app {
 

@@ -15,14 +15,14 @@
 #include <optional>
 #include <thread>
 
-#include "optimize/mpi/evaluation_farm.hpp"
-#include "optimize/staged_study.hpp"
-#include "optimize/study.hpp"
-#include "optimize/study_runner.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/mpi/evaluation_farm.hpp"
+#include "optimize/staged_study.hpp"
+#include "optimize/study.hpp"
+#include "optimize/study_runner.hpp"
 
 namespace pronk::app {
 
@@ -103,9 +103,8 @@ int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
       std::printf("%s: fidelity gap in the %s model: first stage's design cost %.6g, final %.6g\n",
                   study.name.c_str(), o.stages.back().model.c_str(), o.gap_first.cost,
                   o.final_best.cost);
-      std::printf(
-          "  results: %s/ (design.json, summary.md, stages/), %s\n", o.out_dir.c_str(),
-          farm ? farm->describe().c_str() : threads_text(opt.threads).c_str());
+      std::printf("  results: %s/ (design.json, summary.md, stages/), %s\n", o.out_dir.c_str(),
+                  farm ? farm->describe().c_str() : threads_text(opt.threads).c_str());
     }
   }
   if (o.ok) write_page_after(o.out_dir, args.quiet);

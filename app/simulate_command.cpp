@@ -7,9 +7,9 @@
 
 #include "io/load/json_reader.hpp"
 #include "io/load/mechanism_loader.hpp"
-#include "io/write/mechanism_output.hpp"
-#include "io/page/page_data.hpp"
 #include "io/load/scene_loader.hpp"
+#include "io/page/page_data.hpp"
+#include "io/write/mechanism_output.hpp"
 #include "io/write/simulation_output.hpp"
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
@@ -34,7 +34,8 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
                   "Override a scene value: --set /json/pointer=value (repeatable)")
       ->type_name("/PTR=VALUE");
   cmd->add_option("--out", args.out_dir, "Output directory (default: out/<scene name>)");
-  cmd->add_flag("--quiet,-q", args.quiet, "Print nothing on success (a run that does not complete still says so on stderr)");
+  cmd->add_flag("--quiet,-q", args.quiet,
+                "Print nothing on success (a run that does not complete still says so on stderr)");
   return cmd;
 }
 
@@ -69,9 +70,9 @@ int run_mechanism(const SimulateArgs& args, const nlohmann::json& doc) {
     std::printf("  outputs in %s/\n", dir.c_str());
     print_page_line(page);
   } else if (run.status != pseudorigid::RunStatus::kCompleted) {
-    std::fprintf(stderr, "pronk simulate: %s: %s, %s (outputs in %s/)\n",
-                 scene.mechanism.name.c_str(), std::string(pseudorigid::to_string(run.status)).c_str(),
-                 run.reason.c_str(), dir.c_str());
+    std::fprintf(
+        stderr, "pronk simulate: %s: %s, %s (outputs in %s/)\n", scene.mechanism.name.c_str(),
+        std::string(pseudorigid::to_string(run.status)).c_str(), run.reason.c_str(), dir.c_str());
   }
   return run.status == pseudorigid::RunStatus::kCompleted ? 0 : 1;
 }

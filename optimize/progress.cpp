@@ -2,8 +2,8 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -16,8 +16,7 @@ constexpr double kTerminalPeriod = 0.2;  ///< [s] between rewrites of a terminal
 constexpr double kLogPeriod = 30.0;      ///< [s] between plain lines in a log
 
 double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -56,8 +55,8 @@ std::string Progress::line(long done, const std::string& detail) const {
     out += "time left unknown yet";
   } else {
     // The rate of the items this run computed (replayed ones cost next to nothing).
-    out += "about " + format_duration(t / static_cast<double>(fresh) *
-                                      static_cast<double>(total_ - done)) +
+    out += "about " +
+           format_duration(t / static_cast<double>(fresh) * static_cast<double>(total_ - done)) +
            " left";
   }
   if (!detail.empty()) out += ", " + detail;
@@ -81,11 +80,9 @@ void Progress::update(long done, const std::string& detail) {
   std::fflush(stderr);
 }
 
-void Progress::note(const std::string& text) const {
-  if (style_ == ProgressStyle::kOff) return;
-  if (open_line_) std::fprintf(stderr, "\n");
-  open_line_ = false;
-  std::fprintf(stderr, "%s\n", text.c_str());
+void progress_note(ProgressStyle style, const std::string& line) {
+  if (style == ProgressStyle::kOff) return;
+  std::fprintf(stderr, "%s\n", line.c_str());
   std::fflush(stderr);
 }
 

@@ -16,6 +16,9 @@ ProgressStyle progress_style(bool quiet);
 /// "8 s", "3 min 05 s", "2 h 04 min".
 std::string format_duration(double seconds);
 
+/// One plain line on stderr unless `style` is off: a phase starts or ends.
+void progress_note(ProgressStyle style, const std::string& line);
+
 class Progress {
  public:
   /// `label` names what is counted ("evaluation", "cells"); `total` of them; `already` of
@@ -26,8 +29,6 @@ class Progress {
 
   /// `done` of `total` are done (including `already`); `detail` ends the line.
   void update(long done, const std::string& detail = "");
-  /// One plain line (a terminal's progress line is ended first): a phase starts or ends.
-  void note(const std::string& line) const;
   /// Ends a terminal's line (the last update stays on screen).
   void finish();
 
@@ -41,7 +42,7 @@ class Progress {
   long total_, already_;
   double t0_;
   double last_print_ = -1.0;
-  mutable bool open_line_ = false;  ///< a terminal line not yet ended
+  bool open_line_ = false;  ///< a terminal line not yet ended
 };
 
 }  // namespace pronk::optimize

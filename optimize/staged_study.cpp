@@ -389,11 +389,9 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
      << " model on the last stage's scenarios:\n\n| metric | first stage's design | final design "
         "|\n|---|---|---|\n";
   md << "| cost | " << o.gap_first.cost << " | " << o.final_best.cost << " |\n";
-  // The last stage's "stability" (its own, or the study's; on by default).
-  const nlohmann::json& last = st.stages.back().overrides;
-  const bool stability = last.is_object() && last.contains("stability")
-                             ? last["stability"].get<bool>()
-                             : st.document.value("stability", true);
+  // Whether the last stage computes the spectral radius, as its study reads it.
+  const bool stability =
+      stage_study(st, st.stages.size() - 1, o.stages.back().values).evaluator.stability;
   md << metric_rows(o.gap_first.aggregated, o.final_best.aggregated, stability);
   if (!o.cross.empty()) {
     md << "\n## Every design in every model\n\nRows: the stage whose design is evaluated; "
@@ -428,13 +426,12 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
   remove_stale_temporaries(o.out_dir, 0);  // each stage cleans its own directory
   std::map<std::string, double> initial;
   for (const auto& p : st.parameters) initial[p.name] = p.initial;
-  const Progress overall(opt.progress, "", 0);
   for (size_t k = 0; k < st.stages.size(); ++k) {
     bool stopped = false;
-    overall.note(st.name + ": stage " + std::to_string(k + 1) + "/" +
-                 std::to_string(st.stages.size()) + " " + st.stages[k].name + " (" +
-                 st.stages[k].model + " model), " + format_duration(staged_now_s() - t0) +
-                 " elapsed");
+    progress_note(opt.progress, st.name + ": stage " + std::to_string(k + 1) + "/" +
+                                    std::to_string(st.stages.size()) + " " + st.stages[k].name +
+                                    " (" + st.stages[k].model + " model), " +
+                                    format_duration(staged_now_s() - t0) + " elapsed");
     o.stages.push_back(
         run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
     if (stopped) {

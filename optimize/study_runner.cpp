@@ -44,7 +44,6 @@ std::string metric_rows(const MetricMap& a, const MetricMap& b, bool stability) 
   return md.str();
 }
 
-
 using nlohmann::json;
 
 namespace {
@@ -265,8 +264,7 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
     md << "\nValidation on " << st.validation->scenarios.size()
        << " held-out scenarios (not seen by the optimizer):\n\n| metric | initial | tuned "
           "|\n|---|---|---|\n";
-    md << metric_rows(o.validation_initial.aggregated, o.validation_best.aggregated,
-                      ev.stability);
+    md << metric_rows(o.validation_initial.aggregated, o.validation_best.aggregated, ev.stability);
     if (o.validation_compared) md << validation_comparison(o, ev.stability);
   }
   md << "\nFiles: `design.json` (reproduce with `pronk reproduce " << o.out_dir
@@ -406,8 +404,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   JournalWriter journal(journal_path, journal_header(st, evaluator),
                         recorded > 0 ? prepare_for_append(journal_path, previous.end) : "");
   StudyProblem problem(evaluator, std::move(previous.records));
-  Progress progress(opt.progress, st.name + ": evaluation", st.optimizer.max_evaluations,
-                    recorded);
+  Progress progress(opt.progress, st.name + ": evaluation", st.optimizer.max_evaluations, recorded);
   JournalObserver observer(problem, journal, timings, recorded, evaluator.variable_names(),
                            progress);
 
@@ -423,11 +420,11 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                                                            : o.result.best_x);
   std::optional<Evaluator> val;
   if (st.validation) {
-    const Progress validation(opt.progress, "", 0);
-    validation.note("  " + st.name + ": validating on " +
-                    std::to_string(st.validation->scenarios.size()) +
-                    " held-out trials (initial and tuned design), " +
-                    format_duration(now_s() - t0) + " elapsed");
+    const double v0 = now_s();
+    progress_note(opt.progress, "  " + st.name + ": validating on " +
+                                    std::to_string(st.validation->scenarios.size()) +
+                                    " held-out trials (initial and tuned design), " +
+                                    format_duration(now_s() - t0) + " elapsed");
     val.emplace(validation_evaluator(st, opt.threads, opt.farm));
     o.validated = true;
     o.validation_initial = val->evaluate_full(o.initial.unit);
@@ -442,8 +439,8 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
     char stabilized[32];
     std::snprintf(stabilized, sizeof stabilized, "%.1f %%",
                   100.0 * o.validation_best.aggregated["stabilized"]);
-    validation.note("  " + st.name + ": validated in " + format_duration(validation.elapsed()) +
-                    ", tuned design stabilized in " + stabilized + " of them");
+    progress_note(opt.progress, "  " + st.name + ": validated in " + format_duration(now_s() - v0) +
+                                    ", tuned design stabilized in " + stabilized + " of them");
   }
   o.wall_time = now_s() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed

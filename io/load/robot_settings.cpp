@@ -238,7 +238,8 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
 void add_defaulted_settings(json* resolved_scene) {
   if (!resolved_scene->contains("pseudo_rigid")) return;
   json& p = (*resolved_scene)["pseudo_rigid"];
-  const json defaults = late_settings(scene::PseudoRigid{});  // items() needs it to outlive the loop
+  const json defaults =
+      late_settings(scene::PseudoRigid{});  // items() needs it to outlive the loop
   for (const auto& [key, value] : defaults.items()) {
     if (!p.contains(key)) p[key] = value;
   }

@@ -95,8 +95,7 @@ class MapProgress {
     if (!line_ || phase_ != what) {
       if (line_) line_->finish();
       phase_ = what;
-      line_ = std::make_unique<Progress>(options_.progress, "map " + st_.name + ": " + what,
-                                         total);
+      line_ = std::make_unique<Progress>(options_.progress, "map " + st_.name + ": " + what, total);
     }
     line_->update(n);
     if (n >= total) line_->finish();

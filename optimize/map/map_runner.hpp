@@ -63,9 +63,9 @@ struct MapRunOptions {
   /// (only the last cell, always), 0 every record, N a sample of N (verify_seed).
   long verify = -1;
   std::uint64_t verify_seed = 0;
-  std::string out_dir;    ///< default: the study's
+  std::string out_dir;                           ///< default: the study's
   ProgressStyle progress = ProgressStyle::kOff;  ///< progress on stderr (progress.hpp)
-  bool figures = true;    ///< render the SVG heat maps (the .gp scripts are always written)
+  bool figures = true;  ///< render the SVG heat maps (the .gp scripts are always written)
   const std::atomic<bool>* stop_flag = nullptr;  ///< Ctrl-C: stop after the running tasks
   /// Empty when valid, else which field, its value and the rule.
   std::string validate() const;

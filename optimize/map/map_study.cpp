@@ -4,10 +4,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "optimize/study.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/study.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 #include "sim/scene/robot_scaling.hpp"
 
@@ -81,12 +81,11 @@ void parse_axis_kind(io::JsonReader& r, const std::string& kind, const json& sce
     a.pointer = r.string_or("pointer", "");
     const json* target = io::find_pointer(scene_doc, a.pointer);
     if (a.pointer.empty() || target == nullptr || !target->is_number()) {
-      throw r.error(
-          "pointer", "a pointer to a number of the resolved scene",
-          "\"" + a.pointer + "\"" +
-              (a.pointer.empty() || target == nullptr
-                   ? " (no such value" + io::resolved_pointer_hint(a.pointer) + ")"
-                   : " (" + io::describe(*target) + ")"));
+      throw r.error("pointer", "a pointer to a number of the resolved scene",
+                    "\"" + a.pointer + "\"" +
+                        (a.pointer.empty() || target == nullptr
+                             ? " (no such value" + io::resolved_pointer_hint(a.pointer) + ")"
+                             : " (" + io::describe(*target) + ")"));
     }
   } else if (kind == "duty_cycle") {
     a.kind = AxisKind::kDutyCycle;

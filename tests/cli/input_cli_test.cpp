@@ -199,8 +199,9 @@ TEST_CASE("option errors are one bad-input line", "[cli][input]") {
   }
   // reproduce reads --rtol itself (a design's own tolerances apply without it).
   for (const char* rtol : {"inf", "nan", "-1"}) {
-    check_bad_input(cli_support::pronk(d, {"reproduce", kDesign, "--rtol", rtol}),
-                    std::string("--rtol: /: expected a finite relative tolerance > 0, found ") + rtol);
+    check_bad_input(
+        cli_support::pronk(d, {"reproduce", kDesign, "--rtol", rtol}),
+        std::string("--rtol: /: expected a finite relative tolerance > 0, found ") + rtol);
   }
   CHECK(entries(d.path) == std::vector<std::string>{".stderr", ".stdout"});
 }

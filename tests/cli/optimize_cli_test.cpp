@@ -168,7 +168,8 @@ TEST_CASE("optimize into a log prints progress lines with the time elapsed and l
   // one every 30 s between), so what the log holds does not depend on the machine's speed.
   Dir d;
   std::string err;
-  REQUIRE(pronk("optimize " + kStudies + "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
+  REQUIRE(pronk("optimize " + kStudies +
+                    "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
                     "--out " + d.path + "/o",
                 d.path, &err) == 0);
   INFO(err);
@@ -187,7 +188,8 @@ TEST_CASE("optimize into a log prints progress lines with the time elapsed and l
     CHECK(gp.find(plot) != std::string::npos);
   }
   // -q: nothing.
-  REQUIRE(pronk("optimize " + kStudies + "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
+  REQUIRE(pronk("optimize " + kStudies +
+                    "study2_legged_pulse_duty50.json --set /optimizer/max_evaluations=6 " +
                     "-q --out " + d.path + "/q",
                 d.path, &err) == 0);
   CHECK(err.empty());

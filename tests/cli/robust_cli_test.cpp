@@ -71,10 +71,11 @@ TEST_CASE("a robust study whose inertia ranges break the triangle inequality exi
   const Run r = pronk(d, {"optimize", d / "bad.json", "--out", d / "o"});
   check_bad_input(r, d / "bad.json" + ": /validation/random/perturb: expected inertia ranges");
   CHECK(r.err.find("triangle inequality") != std::string::npos);
-  st["validation"]["random"]["perturb"] = {{{"pointer", "/pseudo_rigid/leg_stiffness"},
-                                            {"relative", {-0.15, 0.15}}}};
+  st["validation"]["random"]["perturb"] = {
+      {{"pointer", "/pseudo_rigid/leg_stiffness"}, {"relative", {-0.15, 0.15}}}};
   write_file(d / "bad.json", st.dump());
   check_bad_input(pronk(d, {"optimize", d / "bad.json", "--out", d / "o"}),
-                  d / "bad.json" + ": /validation/random/perturb/0/pointer: expected a number "
-                                   "the pulse model uses");
+                  d / "bad.json" +
+                      ": /validation/random/perturb/0/pointer: expected a number "
+                      "the pulse model uses");
 }
