@@ -13,6 +13,7 @@
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
 #include "io/write/atomic_file.hpp"
+#include "io/write/plot.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
 
@@ -57,6 +58,13 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* design = add_design_command(app, design_args);
   BenchArgs bench_args;
   CLI::App* bench = add_bench_command(app, bench_args);
+  // Every command that draws figures can skip gnuplot: the data and the .gp scripts stay.
+  bool no_figures = false;
+  for (CLI::App* cmd : {simulate, optimize, reproduce, design, map}) {
+    cmd->add_flag("--no-figures", no_figures,
+                  "Write the CSV data and gnuplot scripts but render no SVG figures (faster; "
+                  "`gnuplot NAME.gp` in the output directory renders one later)");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -68,6 +76,7 @@ int run_cli(int argc, const char* const* argv) {
   } catch (const CLI::ParseError& e) {
     return report_option_error(e);
   }
+  io::set_render_figures(!no_figures);
   return run_reporting_errors([&] {
     // Every command's --out is checked before any work: a path that cannot be a
     // directory is bad input, not a failure after the run.

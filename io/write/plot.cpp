@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -104,6 +105,12 @@ std::optional<std::string> run_gnuplot(const std::string& dir, const std::string
 
 }  // namespace
 
+namespace {
+std::atomic<bool> g_render{true};
+}  // namespace
+
+void set_render_figures(bool render) { g_render = render; }
+
 bool gnuplot_available() {
   static const bool available = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
   return available;
@@ -111,6 +118,10 @@ bool gnuplot_available() {
 
 bool render_figure(const std::string& dir, const std::string& name, const std::string& script) {
   write_file_atomic(dir + "/" + name + ".gp", script);
+  if (!g_render) {
+    std::remove((dir + "/" + name + ".svg").c_str());  // no figure rather than an earlier run's
+    return false;
+  }
   if (!gnuplot_available()) {
     std::call_once(g_missing_reported, [] {
       std::cerr << "pronk: gnuplot not found: figures not rendered (the .gp scripts and CSV "

@@ -12,6 +12,12 @@ namespace pronk::io {
 /// process) when gnuplot is unavailable or fails; the script stays for the user.
 bool render_figure(const std::string& dir, const std::string& name, const std::string& script);
 
+/// Whether render_figure runs gnuplot (the default) or writes only the scripts (the command
+/// line's --no-figures: the CSV data and every .gp script are still written, and `gnuplot
+/// NAME.gp` in the run's directory renders one later). Process-wide: set by the command line
+/// before any output.
+void set_render_figures(bool render);
+
 /// True when a gnuplot executable is on PATH (checked once).
 bool gnuplot_available();
 

@@ -346,6 +346,34 @@ TEST_CASE("simulate --model pulse overrides the scene's model", "[cli][outputs]"
   check_csv(slurp(dir / "p/strides.csv"), 2);
 }
 
+TEST_CASE("simulate without figures (--no-figures) writes the same data and the scripts, no SVG", "[cli][outputs]") {
+  TempDir dir("cli");
+  const std::string scene = kSceneDir + "case3_legged_pulse.json";
+  const Run with =
+      pronk(dir, {"simulate", scene, "--set", "/simulation/duration=1", "--out", "a", "-q"});
+  const Run without = pronk(dir, {"simulate", scene, "--set", "/simulation/duration=1", "--out",
+                                  "b", "-q", "--no-figures"});
+  INFO("stderr: " << with.err << without.err);
+  REQUIRE(with.code == 0);
+  REQUIRE(without.code == 0);
+  CHECK(without.err.empty());  // (no "gnuplot not found" either: nothing was asked of it)
+  for (const char* fig : {"motion", "leg_force"}) {
+    CHECK(slurp(dir / (std::string("a/") + fig + ".gp")) ==
+          slurp(dir / (std::string("b/") + fig + ".gp")));
+    CHECK_FALSE(fs::exists(dir / (std::string("b/") + fig + ".svg")));
+  }
+  // The run and its data do not depend on the figures.
+  CHECK(slurp(dir / "a/trajectory.csv") == slurp(dir / "b/trajectory.csv"));
+  CHECK(slurp(dir / "a/strides.csv") == slurp(dir / "b/strides.csv"));
+  // A figure of an earlier run in the same directory is removed, not left stale.
+  if (fs::exists(dir / "a/motion.svg")) {
+    const Run again = pronk(dir, {"simulate", scene, "--set", "/simulation/duration=1", "--out",
+                                  "a", "-q", "--no-figures"});
+    REQUIRE(again.code == 0);
+    CHECK_FALSE(fs::exists(dir / "a/motion.svg"));
+  }
+}
+
 TEST_CASE("a run that falls exits 1 with status fell and finite outputs", "[cli][outputs]") {
   TempDir dir("cli");
   const std::string scene = kSceneDir + "case1_body_only.json";
