@@ -120,6 +120,7 @@ int run_compare(const CompareArgs& args) {
   opt.progress = optimize::progress_style(args.quiet);
   opt.validate(args.designs.size());  // before reading a design: a bad option is the first error
   const std::string dir = args.out_dir.empty() ? "out/compare" : args.out_dir;
+  optimize::check_comparison_directory(dir);
   const optimize::Comparison c = optimize::compare_designs(args.designs, opt);
   const io::ComparisonData data = optimize::write_comparison(dir, c);
   if (!args.quiet) print_comparison(data, dir);

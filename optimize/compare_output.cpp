@@ -1,6 +1,7 @@
 #include "optimize/compare_output.hpp"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "io/load/input_error.hpp"
 #include "io/write/atomic_file.hpp"
@@ -93,6 +94,19 @@ io::ComparisonColumn comparison_column(const ComparedDesign& d) {
 }
 
 }  // namespace
+
+void check_comparison_directory(const std::string& dir) {
+  for (const char* f : {"design.json", "journal.jsonl", "history.csv", "cells.csv",
+                        "trajectory.csv", "nodes.csv"}) {
+    std::error_code ec;
+    if (std::filesystem::exists(dir + "/" + f, ec)) {
+      throw io::InputError("--out", "",
+                           "a new directory or one `pronk compare` wrote (it writes summary.md "
+                           "and report.html there)",
+                           "\"" + dir + "\", which holds another command's " + f);
+    }
+  }
+}
 
 io::ComparisonData comparison_data(const Comparison& c) {
   io::ComparisonData out;

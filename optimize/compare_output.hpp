@@ -11,7 +11,11 @@
 
 namespace pronk::optimize {
 
-/// The comparison as the files show it. `runs` names each design's run directory (relative).
+/// Throws io::InputError (naming "--out") when `dir` holds another command's results (a
+/// study, a map or a run): the comparison's summary.md and report.html would replace theirs.
+void check_comparison_directory(const std::string& dir);
+
+/// The comparison as the files show it (each design's run directory runs/<label>).
 io::ComparisonData comparison_data(const Comparison& c);
 
 /// Writes every design's playback run and the comparison's files into `dir` (created);

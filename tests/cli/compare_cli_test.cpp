@@ -167,4 +167,10 @@ TEST_CASE("compare: bad input is one line, exit 2", "[cli][compare][input]") {
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--play", "scenarios:16"}),
                   "--play: /: expected a trial of the scenarios (0 to 15), found \"scenarios:16\"");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--threads", "0"}), "command line: ");
+  // A study's directory keeps its summary.md.
+  std::filesystem::create_directories(d / "study");
+  write_file(d / "study/design.json", "{}");
+  check_bad_input(cli_support::pronk(d, {"compare", a, a, "--out", "study"}),
+                  "--out: /: expected a new directory or one `pronk compare` wrote");
+  CHECK(slurp(d / "study/design.json") == "{}");
 }

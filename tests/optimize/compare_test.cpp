@@ -47,7 +47,7 @@ void check_column_reproduces(const Comparison& c, size_t k) {
   ReproduceOptions ro;
   ro.threads = 1;  // compare ran on 2: the numbers may not depend on it
   const ReproduceReport rep = reproduce_design(io::read_json_file(d.file), d.file, ro);
-  REQUIRE(rep.values.size() > 20);
+  REQUIRE(rep.values.size() >= 15);  // the cost and every metric of each set
   for (const ReproducedValue& v : rep.values) {
     INFO(v.name);
     const double got = compared_value(d.evaluation, v.name);
