@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "io/load/input_error.hpp"
+#include "io/page/page_data.hpp"
 #include "tests/cli/cli_support.hpp"
 
 using Catch::Matchers::Contains;
@@ -140,6 +142,19 @@ TEST_CASE("compare --play, --trials and --seed choose the trials", "[cli][compar
   CHECK(meta.at("playback").at("name") == "random_4");
   CHECK(meta.at("designs").at(0).at("own_study") == false);  // its validation set redrawn
   CHECK_THAT(slurp(d / "c/summary.md"), Contains("5 trials of 20 s (5 random, seed 11)"));
+  // The page's data, read back from the files: both designs' runs, every trial.
+  namespace page = pronk::io::page;
+  REQUIRE(page::classify_directory(d / "c") == page::DirKind::kComparison);
+  const json data = page::page_data(d / "c", page::DirKind::kComparison);
+  CHECK(data.at("kind") == "compare");
+  REQUIRE(data.at("runs").size() == 2);
+  CHECK(data.at("runs").at(1).at("kind") == "robot");
+  CHECK(data.at("trials").at("rows") == 16 + 5);
+  // A run directory outside the comparison is refused, not read.
+  json bad = meta;
+  bad["designs"][0]["run"] = "../c";
+  write_file(d / "c/compare.json", bad.dump());
+  CHECK_THROWS_AS(page::page_data(d / "c", page::DirKind::kComparison), pronk::io::InputError);
 }
 
 TEST_CASE("compare: bad input is one line, exit 2", "[cli][compare][input]") {

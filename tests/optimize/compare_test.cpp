@@ -115,7 +115,7 @@ TEST_CASE("compare: designs of one study family, each column its own recorded nu
   }
 }
 
-TEST_CASE("compare: --reference picks whose trials judge; another study's design says so",
+TEST_CASE("compare: --reference picks whose trials judge, and another study's design says so",
           "[compare]") {
   // Study 1 (body-only robot, impulse model, no validation set) judges study 2's design on
   // its own 16 scenarios: study 1's column is what its design.json records, study 2's is not.
