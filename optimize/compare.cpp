@@ -220,7 +220,17 @@ Comparison compare_designs(const std::vector<std::string>& files, const CompareO
     d.judged = judged_study(d, judging, opt, c.reference_file, &d.own_study);
   }
   c.playback = playback_trial(opt, c.designs[ref].judged);
-  const long sets = c.designs[ref].judged.validation ? 2 : 1;
+  const Study& judge = c.designs[ref].judged;
+  progress_note(
+      opt.progress,
+      "compare: " + std::to_string(c.designs.size()) + " designs on the trials of " +
+          c.reference_file + ": " + std::to_string(judge.evaluator.scenarios.scenarios.size()) +
+          " scenarios" +
+          (judge.validation
+               ? " and " + std::to_string(judge.validation->scenarios.size()) + " validation trials"
+               : std::string()) +
+          " each");
+  const long sets = judge.validation ? 2 : 1;
   const long total = sets * static_cast<long>(c.designs.size());
   Progress progress(opt.progress, "compare: evaluation", total);
   long done = 0;
