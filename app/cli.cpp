@@ -6,16 +6,17 @@
 #include <CLI/CLI.hpp>
 
 #include "app/bench_command.hpp"
+#include "app/compare_command.hpp"
 #include "app/design_command.hpp"
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/reproduce_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
-#include "io/write/atomic_file.hpp"
-#include "io/write/plot.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/write/plot.hpp"
 
 namespace pronk::app {
 
@@ -54,13 +55,15 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* map = add_map_command(app, map_args);
   ViewArgs view_args;
   CLI::App* view = add_view_command(app, view_args);
+  CompareArgs compare_args;
+  CLI::App* compare = add_compare_command(app, compare_args);
   DesignArgs design_args;
   CLI::App* design = add_design_command(app, design_args);
   BenchArgs bench_args;
   CLI::App* bench = add_bench_command(app, bench_args);
   // Every command that draws figures can skip gnuplot: the data and the .gp scripts stay.
   bool no_figures = false;
-  for (CLI::App* cmd : {simulate, optimize, reproduce, design, map}) {
+  for (CLI::App* cmd : {simulate, optimize, reproduce, design, map, compare}) {
     cmd->add_flag("--no-figures", no_figures,
                   "Write the CSV data and gnuplot scripts but render no SVG figures (faster; "
                   "`gnuplot NAME.gp` in the output directory renders one later)");
@@ -89,6 +92,7 @@ int run_cli(int argc, const char* const* argv) {
     if (simulate->parsed()) return run_simulate(simulate_args);
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
+    if (compare->parsed()) return run_compare(compare_args);
     if (design->parsed()) return run_design(design_args);
     if (map->parsed()) return run_map_command(map_args);
     if (view->parsed()) return run_view(view_args);

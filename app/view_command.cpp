@@ -12,9 +12,10 @@ CLI::App* add_view_command(CLI::App& app, ViewArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "view",
       "Write the page of a directory pronk wrote, from its files: view.html (3-D playback and\n"
-      "linked plots) for a run of `pronk simulate`, report.html for a study (`pronk optimize`)\n"
-      "or a map (`pronk map`). One self-contained file; open it in a browser, offline.");
-  cmd->add_option("dir", args.dir, "Run, study or map directory")->required();
+      "linked plots) for a run of `pronk simulate`, report.html for a study (`pronk optimize`),\n"
+      "a map (`pronk map`) or a comparison (`pronk compare`). One self-contained file; open it\n"
+      "in a browser, offline.");
+  cmd->add_option("dir", args.dir, "Run, study, map or comparison directory")->required();
   cmd->add_flag("--quiet,-q", args.quiet, "Print nothing on success");
   return cmd;
 }

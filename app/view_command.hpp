@@ -1,5 +1,6 @@
 // `pronk view DIR`: writes the page of a directory pronk wrote: view.html (3-D playback and
-// linked plots) for a robot or mechanism run, report.html for a study, a staged study or a map.
+// linked plots) for a robot or mechanism run, report.html for a study, a staged study, a map
+// or a comparison of designs.
 #pragma once
 
 #include <string>
@@ -16,7 +17,7 @@ struct ViewArgs {
 CLI::App* add_view_command(CLI::App& app, ViewArgs& args);
 
 /// 0 the page was written; 1 the page templates are absent. Throws io::InputError (exit 2)
-/// when `dir` is not a run, study or map, or one of its files is missing or damaged.
+/// when `dir` is not a run, study, map or comparison, or one of its files is missing or damaged.
 int run_view(const ViewArgs& args);
 
 /// One line: where the page is, or (empty `page`) how to get pages.

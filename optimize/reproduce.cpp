@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "optimize/design_reader.hpp"
-#include "optimize/study_runner.hpp"
 #include "io/build_info.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
+#include "optimize/design_reader.hpp"
+#include "optimize/study_runner.hpp"
 
 namespace pronk::optimize {
 
@@ -103,24 +103,32 @@ void ReproduceOptions::validate() const {
   }
 }
 
+DesignEvaluation evaluate_design(const Study& study, const std::vector<double>& unit, int threads,
+                                 bool validation) {
+  EvaluatorConfig cfg = study.evaluator;
+  cfg.threads = threads;
+  DesignEvaluation out;
+  out.scenarios = Evaluator(cfg).evaluate_full(unit);
+  if (validation && study.validation) {
+    out.validation = validation_evaluator(study, threads).evaluate_full(unit);
+  }
+  return out;
+}
+
 ReproduceReport reproduce_design(const nlohmann::json& design, const std::string& path,
                                  const ReproduceOptions& opt) {
   opt.validate();
   const RecordedDesign d = read_design(design, path);
   ReproduceReport rep;
   choose_mode(rep, d, opt);
-  EvaluatorConfig cfg = d.study.evaluator;
-  cfg.threads = opt.threads;
-  const Evaluator ev(cfg);
-  const Evaluation e = ev.evaluate_full(d.unit);
-  compare_values(rep, d.scenarios, e, "");
-  compare_decisions(rep, d.scenarios, e, "scenarios");
+  const DesignEvaluation e = evaluate_design(d.study, d.unit, opt.threads, !opt.scenarios_only);
+  compare_values(rep, d.scenarios, e.scenarios, "");
+  compare_decisions(rep, d.scenarios, e.scenarios, "scenarios");
   if (d.validation && opt.scenarios_only) {
     rep.validation_skipped = true;
   } else if (d.validation) {
-    const Evaluation v = validation_evaluator(d.study, opt.threads).evaluate_full(d.unit);
-    compare_values(rep, *d.validation, v, "validation ");
-    compare_decisions(rep, *d.validation, v, "validation");
+    compare_values(rep, *d.validation, *e.validation, "validation ");
+    compare_decisions(rep, *d.validation, *e.validation, "validation");
   }
   return rep;
 }

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "optimize/reproduction_record.hpp"
+#include "optimize/study.hpp"
 
 namespace pronk::optimize {
 
@@ -74,6 +75,16 @@ struct ReproduceReport {
   bool validation_skipped = false;  ///< --scenarios-only on a design with validation
   bool reproduced() const { return mismatches == 0 && decision_mismatches == 0; }
 };
+
+/// A design's optimizer coordinates evaluated on a study's scenarios and (when the study has
+/// one and `validation`) its validation set: what `reproduce` compares with the recorded
+/// values and `compare` tabulates. Deterministic whatever `threads`.
+struct DesignEvaluation {
+  Evaluation scenarios;
+  std::optional<Evaluation> validation;
+};
+DesignEvaluation evaluate_design(const Study& study, const std::vector<double>& unit, int threads,
+                                 bool validation = true);
 
 /// Re-evaluates `design` (read from `path`, named in errors; a relative scene path of its
 /// study resolves against the path's directory). Throws io::InputError when it is not a

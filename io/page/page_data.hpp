@@ -2,7 +2,8 @@
 // (trajectory.csv, strides.csv, optional feet.csv and energy.csv of the full model), a
 // mechanism run (nodes.csv, bodies.csv, energy.csv), a study (history.csv, design.json,
 // initial/ and tuned/ runs), a staged study (stages/*/) or a map (cells.csv, boundary.csv,
-// summary.json, playback.json). Missing or damaged files are InputErrors naming the file.
+// summary.json, playback.json) or a comparison of designs (compare.json, compare.csv,
+// trials.csv, runs/*/). Missing or damaged files are InputErrors naming the file.
 #pragma once
 
 #include <string>
@@ -11,7 +12,7 @@
 
 namespace pronk::io::page {
 
-enum class DirKind { kRobotRun, kMechanismRun, kStudy, kStagedStudy, kMap };
+enum class DirKind { kRobotRun, kMechanismRun, kStudy, kStagedStudy, kMap, kComparison };
 
 /// What `dir` holds. InputError when it is not a directory or holds none of the above.
 DirKind classify_directory(const std::string& dir);
@@ -26,6 +27,10 @@ inline constexpr long kRunPageCells = 300000;
 /// The page data of a run directory (robot or mechanism), at most `max_cells` numbers
 /// per table.
 nlohmann::json run_page_data(const std::string& dir, long max_cells = kRunPageCells);
+
+/// The page data of a comparison directory (`pronk compare`): its designs, metrics and
+/// trials, and every design's playback run.
+nlohmann::json comparison_page_data(const std::string& dir);
 
 /// The page data of any directory classify_directory() accepts.
 nlohmann::json page_data(const std::string& dir, DirKind kind);

@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 #include "io/page/csv_table.hpp"
 #include "io/page/page_data.hpp"
-#include "io/load/scene_loader.hpp"
 
 namespace pronk::io::page {
 
@@ -105,11 +105,12 @@ DirKind classify_directory(const std::string& dir) {
                : DirKind::kRobotRun;
   }
   if (has("cells.csv")) return DirKind::kMap;  // a map has a journal.jsonl too
+  if (has("compare.json")) return DirKind::kComparison;
   if (has("stages") && has("design.json")) return DirKind::kStagedStudy;
   if (has("history.csv") || has("journal.jsonl")) return DirKind::kStudy;
   throw InputError(dir, "",
-                   "a run, study or map directory written by pronk (trajectory.csv, nodes.csv, "
-                   "history.csv, stages/ or cells.csv)",
+                   "a run, study, map or comparison directory written by pronk (trajectory.csv, "
+                   "nodes.csv, history.csv, stages/, cells.csv or compare.json)",
                    "none of them");
 }
 
@@ -132,6 +133,8 @@ nlohmann::json page_data(const std::string& dir, DirKind kind) {
         return reportpage_staged(dir);
       case DirKind::kMap:
         return reportpage_map(dir);
+      case DirKind::kComparison:
+        return comparison_page_data(dir);
     }
   } catch (const nlohmann::json::exception& e) {
     // A file of the right name whose content is not what pronk writes (a wrong type).

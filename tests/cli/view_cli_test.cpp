@@ -103,7 +103,7 @@ TEST_CASE("pronk view refuses what is not a run, and damaged runs, writing nothi
   fs::create_directories(dir / "empty");
   Run r = pronk(dir, {"view", "empty"});
   CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("empty: /: expected a run, study or map directory"));
+  CHECK_THAT(r.err, Contains("empty: /: expected a run, study, map or comparison directory"));
   r = pronk(dir, {"view", "nowhere"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("no such directory"));

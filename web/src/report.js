@@ -1,11 +1,13 @@
 // report.html: a study (history, parameters, parallel coordinates, constraints, tables,
-// validation, initial vs tuned playback), a staged study (stages and the fidelity gap), or
-// a map (stabilized-fraction heat map with the boundary, hover details, click to play).
+// validation, initial vs tuned playback), a staged study (stages and the fidelity gap), a
+// map (stabilized-fraction heat map with the boundary, hover details, click to play), or a
+// comparison of designs (metrics and trials side by side, every design's playback).
 import { pageData, el, fmt, htmlTable, columns, ramp } from './data.js';
 import { linePlot, fewestAxisTicks } from './plots.js';
 import { runScene, installTestHook } from './runscene.js';
 import { Player } from './player.js';
 import { mapReport } from './mapreport.js';
+import { compareReport } from './comparereport.js';
 
 const test = { historyPoints: 0 };
 
@@ -192,18 +194,25 @@ function stagedReport(box, D) {
 
 function main() {
   const D = pageData();
-  const name = D.kind === 'map' ? D.summary.name : D.design.staged_study ?? D.design.study;
+  const kinds = { map: 'robustness map', staged: 'staged study', compare: 'comparison of designs' };
+  const name = D.kind === 'map' ? D.summary.name
+    : D.kind === 'compare' ? D.comparison.designs.map((d) => d.label).join(' · ')
+      : D.design.staged_study ?? D.design.study;
   document.title = `${name} · pronk report`;
   const app = document.getElementById('app');
   app.append(el('header', {}, el('h1', { text: name }),
-    el('div', { class: 'sub', text: D.kind === 'map' ? 'robustness map' : D.kind === 'staged' ? 'staged study' : 'study' })));
+    el('div', { class: 'sub', text: kinds[D.kind] ?? 'study' })));
   const box = el('div', { class: 'report' });
   app.append(box);
   let played = null;
-  if (D.kind === 'map') played = mapReport(box, D);
+  let extra = { historyPoints: () => test.historyPoints };
+  if (D.kind === 'compare') {
+    const r = compareReport(box, D);
+    played = r.played;
+    extra = { ...extra, ...r.extra };
+  } else if (D.kind === 'map') played = mapReport(box, D);
   else if (D.kind === 'staged') played = stagedReport(box, D);
   else played = studySection(box, D, 'optimization');
-  const extra = { historyPoints: () => test.historyPoints };
   if (D.kind === 'map') return;  // the map's playback installs the hook of the trial on show
   if (played) installTestHook(played.scene, played.player, extra);
   else window.pronkTest = { ...extra, fewestAxisTicks };

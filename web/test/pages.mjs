@@ -1,11 +1,12 @@
 // Browser test of pronk's pages (CTest: browser_pages). Builds the page templates from
 // web/src, has pronk write each page type (robot run, mechanism run, study, staged study,
-// map), opens each in headless Chromium (Debian's /usr/bin/chromium through playwright-core)
-// and checks, at two playback times:
+// map, comparison of designs), opens each in headless Chromium (Debian's /usr/bin/chromium
+// through playwright-core) and checks, at two playback times:
 //   - no console error, no page error, no network request (only the page's own file);
 //   - the 3-D canvas is not blank, the drawn body sits where the CSV puts it (projected
 //     with the page's camera) and moves between the two times in the CSV's direction;
-//   - a study report shows as many history points as its journal has evaluations.
+//   - a study report shows as many history points as its journal has evaluations;
+//   - a comparison shows one playback per design and one row per trial.
 // Usage: node web/test/pages.mjs PRONK_EXE WORK_DIR [--screenshots DIR]
 // Exit 77 (CTest: skipped) when Chromium or the npm packages are absent.
 import { execFileSync } from 'node:child_process';
@@ -42,6 +43,8 @@ exitOf('simulate', 'studies/scenes/case3_legged_pulse.json', '--out', `${work}/r
 exitOf('simulate', 'studies/mechanisms/four_leg_drop.json', '--out', `${work}/mechanism`, '-q');
 run('optimize', 'studies/study2_legged_pulse_duty50.json', '--out', `${work}/study`, '-q',
   '--set', '/optimizer/max_evaluations=24', '--set', '/scenarios/random/count=2', '--set', '/validation/random/count=2');
+run('compare', 'results/study4_cobyla/design.json', 'results/study4_bobyqa/design.json', '--out', `${work}/compare`,
+  '-q', '--trials', '4', '--play', 'validation:1');
 fs.cpSync(path.join(root, 'results/study5_fidelity_gap'), `${work}/staged`, { recursive: true });
 run('view', `${work}/staged`, '-q');
 run('map', 'studies/map_seed_duty.json', '--out', `${work}/map`, '-q', '--set', '/axes/0/count=4',
@@ -72,6 +75,8 @@ const pages = [
   { name: 'staged', file: 'staged/report.html', dir: 'staged/stages/3_full/tuned', times: [0.1, 0.9],
     evaluations: ['1_impulse', '2_pulse', '3_full'].map((s) => evaluations(`${work}/staged/stages/${s}/journal.jsonl`)).reduce((a, b) => a + b) },
   { name: 'map', file: 'map/report.html', dir: null, times: [0.1, 0.9] },
+  { name: 'compare', file: 'compare/report.html', dir: 'compare/runs/study4_cobyla', times: [0.1, 0.9],
+    designs: 2, trialRows: fs.readFileSync(`${work}/compare/trials.csv`, 'utf8').trim().split('\n').length - 1 },
 ];
 
 const browser = await pw.launch({
@@ -172,6 +177,14 @@ for (const p of pages) {
     check(p.name, 'the boundary line is drawn through the rows with a boundary, and only those',
       JSON.stringify(drawnRows) === JSON.stringify(want),
       `drawn ${JSON.stringify(drawnRows)}, rows with a boundary ${JSON.stringify(want)} of ${rows.length}`);
+  }
+  if (p.designs !== undefined) {
+    // A comparison: one playback per design, one table row per trial of trials.csv.
+    const shown = await page.evaluate(() => ({ designs: pronkTest.designs(), rows: pronkTest.trialRows(),
+      canvases: document.querySelectorAll('.stage canvas').length }));
+    check(p.name, 'one playback per design', shown.designs === p.designs && shown.canvases === p.designs,
+      `${shown.canvases} views of ${shown.designs} designs`);
+    check(p.name, 'trial rows = trials.csv rows', shown.rows === p.trialRows, `${shown.rows} vs ${p.trialRows}`);
   }
   if (p.evaluations !== undefined) {
     const n = await page.evaluate(() => pronkTest.historyPoints());
