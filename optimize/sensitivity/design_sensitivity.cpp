@@ -93,15 +93,15 @@ void fit_inertia_ranges(const json& doc, std::vector<SensitivityInput>& inputs,
 SensitivityInput physical_input(const json& doc, const std::vector<std::string>& unused,
                                 const std::string& pointer, const std::string& name,
                                 const std::string& origin) {
+  if (const std::string* u = ignored_setting(unused, pointer)) {
+    throw io::InputError(origin, pointer, "a number the model uses",
+                         "a number that model ignores (" + *u + ")");
+  }
   const json* v = io::find_pointer(doc, pointer);
   if (v == nullptr || !v->is_number()) {
     throw io::InputError(
         origin, pointer, "a pointer to a number of the scene (see scene.resolved.json)",
         v == nullptr ? "nothing" + io::resolved_pointer_hint(pointer) : io::describe(*v));
-  }
-  if (const std::string* u = ignored_setting(unused, pointer)) {
-    throw io::InputError(origin, pointer, "a number the model uses",
-                         "a number that model ignores (" + *u + ")");
   }
   SensitivityInput in;
   in.name = name;
@@ -178,7 +178,9 @@ class PointRunner {
   std::vector<std::vector<double>> run(const std::vector<Point>& pts, const std::string& label) {
     std::vector<std::vector<double>> y;
     Progress progress(opt_.progress, label, static_cast<long>(pts.size()));
-    const size_t chunk = 8 * static_cast<size_t>(std::max(1, opt_.threads));
+    // On a farm every point's jobs go out at once: larger chunks keep the ranks busy.
+    const size_t chunk =
+        (opt_.farm != nullptr ? 64 : 8) * static_cast<size_t>(std::max(1, opt_.threads));
     for (size_t b = 0; b < pts.size(); b += chunk) {
       std::vector<std::vector<double>> units;
       for (size_t i = b; i < std::min(pts.size(), b + chunk); ++i) units.push_back(unit(pts[i]));
@@ -228,8 +230,8 @@ class PointRunner {
 // The evaluator of the sensitivity inputs: the study's, with the design bound into the scene
 // and every input a linear parameter whose bounds hold both its range and the local steps.
 EvaluatorConfig input_config(EvaluatorConfig cfg, const json& doc,
-                             const std::vector<SensitivityInput>& inputs, double step,
-                             int threads) {
+                             const std::vector<SensitivityInput>& inputs, double step, int threads,
+                             JobFarm* farm) {
   cfg.scene_doc = doc;
   cfg.parameters.clear();
   for (const auto& in : inputs) {
@@ -242,7 +244,8 @@ EvaluatorConfig input_config(EvaluatorConfig cfg, const json& doc,
     p.initial = in.value;
     cfg.parameters.push_back(p);
   }
-  cfg.threads = threads;
+  cfg.threads = farm != nullptr ? 1 : threads;
+  cfg.farm = farm;
   return cfg;
 }
 
@@ -320,7 +323,8 @@ DesignSensitivity design_sensitivity(const json& design, const std::string& path
   const scene::Scene scene0 = io::parse_scene(doc, cfg.scene_file);
   out.model = std::string(scene::to_string(scene0.model));
   out.inputs = collect_inputs(cfg, d.unit, doc, scene0, opt);
-  PointRunner runner(input_config(cfg, doc, out.inputs, opt.local.step, opt.threads), opt, out);
+  PointRunner runner(input_config(cfg, doc, out.inputs, opt.local.step, opt.threads, opt.farm), opt,
+                     out);
   std::vector<double> x0;
   for (const auto& in : out.inputs) x0.push_back(in.value);
   const Evaluation e0 = runner.evaluator().evaluate_full(runner.unit(x0));

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "optimize/job_farm.hpp"
 #include "optimize/progress.hpp"
 #include "optimize/sensitivity/local.hpp"
 #include "optimize/sensitivity/sobol.hpp"
@@ -42,6 +43,9 @@ struct DesignSensitivityOptions {
   /// --range POINTER=REL: the range of an input, or a physical number added as an input.
   std::vector<std::pair<std::string, double>> ranges;
   int threads = 1;
+  /// Where the evaluations' scenario runs go instead of the threads (MPI ranks); the numbers
+  /// are the same either way.
+  JobFarm* farm = nullptr;
   ProgressStyle progress = ProgressStyle::kOff;
   /// Throws io::InputError naming the option.
   void validate() const;
