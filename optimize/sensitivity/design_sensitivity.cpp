@@ -342,6 +342,7 @@ DesignSensitivity design_sensitivity(const json& design, const std::string& path
                                  runner.run(local_points(x0, opt.local), "local evaluations"));
   one_at_a_time(runner, out);
   out.local_seconds = seconds_since(t0);
+  out.local_step = opt.local.step;
   out.sobol_options = opt.sobol;
   if (opt.sobol.samples > 0) {
     t0 = std::chrono::steady_clock::now();

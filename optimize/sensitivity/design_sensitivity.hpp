@@ -57,6 +57,7 @@ struct DesignSensitivity {
   std::vector<SensitivityInput> inputs;
   std::vector<std::string> outputs;  ///< "cost", then every aggregated metric (sorted)
   LocalResult local;
+  double local_step = 0.0;  ///< the relative step h (the differences use h and h/2)
   /// One at a time: the outputs with input j at its range's lower and upper end ([out][in]).
   std::vector<std::vector<double>> low, high;
   std::optional<SobolResult> sobol;

@@ -64,10 +64,7 @@ json local_json(const DesignSensitivity& s) {
   }
   json values = json::object();
   for (size_t i = 0; i < s.outputs.size(); ++i) values[s.outputs[i]] = jnum(l.f0[i]);
-  return {
-      {"step", s.local.h.empty() ? 0.0 : s.local.h[0] / std::max(1e-300, std::abs(s.local.x0[0]))},
-      {"values", values},
-      {"derivatives", rows}};
+  return {{"step", s.local_step}, {"values", values}, {"derivatives", rows}};
 }
 
 json sobol_json(const DesignSensitivity& s) {
