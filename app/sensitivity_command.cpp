@@ -29,6 +29,7 @@ sens::DesignSensitivityOptions options_of(const SensitivityArgs& a) {
   sens::DesignSensitivityOptions o;
   if (!a.model.empty()) o.model = a.model;
   o.validation = a.validation;
+  o.plant = a.physical == "plant";
   o.local.step = a.local_step;
   o.sobol.samples = a.samples;
   o.sobol.bootstrap = a.bootstrap;
@@ -58,6 +59,10 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityArgs& args) {
   cmd->add_option("--model", args.model, "Evaluate in this model instead of the study's")
       ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid"}));
   cmd->add_flag("--validation", args.validation, "Evaluate on the study's validation set");
+  cmd->add_option("--physical", args.physical,
+                  "plant: a physical number changes the robot only, the controller keeps the "
+                  "design's numbers (default); design: robot and controller alike")
+      ->check(CLI::IsMember({"plant", "design"}));
   cmd->add_option("--local-step", args.local_step,
                   "Relative step h of the central differences (also h/2) (default 1e-2)");
   cmd->add_option("--samples", args.samples,

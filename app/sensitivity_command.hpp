@@ -16,6 +16,7 @@ struct SensitivityArgs {
   std::string out;    ///< default: sensitivity/ beside the design
   std::string model;  ///< "" : the study's
   bool validation = false;
+  std::string physical = "plant";  ///< "plant" or "design"
   double local_step = 1e-2;
   long samples = 16;
   long bootstrap = 200;

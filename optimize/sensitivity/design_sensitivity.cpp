@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
@@ -168,67 +169,8 @@ std::vector<SensitivityInput> collect_inputs(const EvaluatorConfig& cfg,
 
 namespace {
 
-// Evaluates points (physical values of the inputs) with one evaluator, in chunks for the
-// progress line; the outputs of an evaluation that made no valid scene are NaN.
-class PointRunner {
- public:
-  PointRunner(EvaluatorConfig cfg, const DesignSensitivityOptions& opt, DesignSensitivity& out)
-      : ev_(std::move(cfg)), opt_(opt), out_(out) {}
-
-  std::vector<std::vector<double>> run(const std::vector<Point>& pts, const std::string& label) {
-    std::vector<std::vector<double>> y;
-    Progress progress(opt_.progress, label, static_cast<long>(pts.size()));
-    // On a farm every point's jobs go out at once: larger chunks keep the ranks busy.
-    const size_t chunk =
-        (opt_.farm != nullptr ? 64 : 8) * static_cast<size_t>(std::max(1, opt_.threads));
-    for (size_t b = 0; b < pts.size(); b += chunk) {
-      std::vector<std::vector<double>> units;
-      for (size_t i = b; i < std::min(pts.size(), b + chunk); ++i) units.push_back(unit(pts[i]));
-      for (const Evaluation& e : ev_.evaluate_full_batch(units)) y.push_back(outputs(e));
-      progress.update(static_cast<long>(y.size()));
-    }
-    progress.finish();
-    out_.evaluations += static_cast<long>(pts.size());
-    return y;
-  }
-
-  /// The output names from the design's own evaluation (which must succeed).
-  void name_outputs(const Evaluation& e) {
-    out_.outputs = {"cost"};
-    for (const auto& [k, v] : e.aggregated) out_.outputs.push_back(k);
-  }
-
-  const Evaluator& evaluator() const { return ev_; }
-
-  std::vector<double> unit(const Point& x) const {
-    std::vector<double> u;
-    for (size_t j = 0; j < x.size(); ++j) u.push_back(ev_.config().parameters[j].to_unit(x[j]));
-    return u;
-  }
-
- private:
-  std::vector<double> outputs(const Evaluation& e) {
-    std::vector<double> v(out_.outputs.size(), NAN);
-    if (!e.ok) {
-      ++out_.failed;
-      if (out_.failures.size() < 5) out_.failures.push_back(e.failure);
-      return v;
-    }
-    v[0] = e.cost;
-    for (size_t i = 1; i < v.size(); ++i) {
-      const auto it = e.aggregated.find(out_.outputs[i]);
-      if (it != e.aggregated.end()) v[i] = it->second;
-    }
-    return v;
-  }
-
-  Evaluator ev_;
-  const DesignSensitivityOptions& opt_;
-  DesignSensitivity& out_;
-};
-
-// The evaluator of the sensitivity inputs: the study's, with the design bound into the scene
-// and every input a linear parameter whose bounds hold both its range and the local steps.
+// The evaluator config of the sensitivity: the study's, with the design bound into the scene
+// and each of `inputs` a linear parameter whose bounds hold both its range and the local steps.
 EvaluatorConfig input_config(EvaluatorConfig cfg, const json& doc,
                              const std::vector<SensitivityInput>& inputs, double step, int threads,
                              JobFarm* farm) {
@@ -248,6 +190,128 @@ EvaluatorConfig input_config(EvaluatorConfig cfg, const json& doc,
   cfg.farm = farm;
   return cfg;
 }
+
+// Evaluates points (values of the inputs), in chunks for the progress line; the outputs of an
+// evaluation that made no valid scene are NaN. Design mode: every input a parameter of one
+// evaluator. Plant mode: the tuned inputs are its parameters, the physical ones plant draws
+// added to every scenario (the controller keeps the design's numbers), one evaluator per point.
+class PointRunner {
+ public:
+  PointRunner(const EvaluatorConfig& cfg, const json& doc, const DesignSensitivityOptions& opt,
+              DesignSensitivity& out)
+      : opt_(opt), out_(out), pool_(opt.farm != nullptr ? 1 : opt.threads) {
+    std::vector<SensitivityInput> params;
+    for (size_t j = 0; j < out.inputs.size(); ++j) {
+      if (opt.plant && !out.inputs[j].tuned) {
+        physical_.push_back(j);
+      } else {
+        params.push_back(out.inputs[j]);
+        tuned_.push_back(j);
+      }
+    }
+    base_ = input_config(cfg, doc, params, opt.local.step, opt.threads, opt.farm);
+    if (physical_.empty()) {
+      ev_ = std::make_unique<Evaluator>(base_);
+    } else {
+      base_.threads = 1;  // the points go in parallel, each point's scenarios serially
+    }
+  }
+
+  std::vector<std::vector<double>> run(const std::vector<Point>& pts, const std::string& label) {
+    std::vector<std::vector<double>> y;
+    Progress progress(opt_.progress, label, static_cast<long>(pts.size()));
+    // On a farm every point's jobs go out at once: larger chunks keep the ranks busy.
+    const size_t chunk =
+        (opt_.farm != nullptr ? 64 : 8) * static_cast<size_t>(std::max(1, opt_.threads));
+    for (size_t b = 0; b < pts.size(); b += chunk) {
+      const std::vector<Point> part(
+          pts.begin() + static_cast<long>(b),
+          pts.begin() + static_cast<long>(std::min(pts.size(), b + chunk)));
+      for (const Evaluation& e : evaluate(part)) y.push_back(outputs(e));
+      progress.update(static_cast<long>(y.size()));
+    }
+    progress.finish();
+    out_.evaluations += static_cast<long>(pts.size());
+    return y;
+  }
+
+  std::vector<Evaluation> evaluate(const std::vector<Point>& pts) {
+    if (ev_) {
+      std::vector<std::vector<double>> units;
+      for (const Point& x : pts) units.push_back(unit(x));
+      return ev_->evaluate_full_batch(units);
+    }
+    std::vector<Evaluation> evs(pts.size());
+    auto one = [&](long i) {
+      evs[static_cast<size_t>(i)] = plant_point(pts[static_cast<size_t>(i)]);
+    };
+    if (opt_.farm != nullptr) {  // one farm: a point at a time, its scenarios over the ranks
+      for (size_t i = 0; i < pts.size(); ++i) one(static_cast<long>(i));
+    } else {
+      pool_.parallel_for(static_cast<long>(pts.size()), one);
+    }
+    return evs;
+  }
+
+  /// The output names from the design's own evaluation (which must succeed).
+  void name_outputs(const Evaluation& e) {
+    out_.outputs = {"cost"};
+    for (const auto& [k, v] : e.aggregated) out_.outputs.push_back(k);
+  }
+
+ private:
+  std::vector<double> unit(const Point& x) const {
+    std::vector<double> u;
+    for (size_t t = 0; t < tuned_.size(); ++t)
+      u.push_back(base_.parameters[t].to_unit(x[tuned_[t]]));
+    return u;
+  }
+
+  // Plant mode: the physical inputs as draws on every scenario, relative to the design's value
+  // (so they compose with the study's own robot perturbations), absolute for a 0.
+  Evaluation plant_point(const Point& x) const {
+    try {
+      EvaluatorConfig cfg = base_;
+      std::vector<PlantDraw> draws;
+      for (size_t j : physical_) {
+        const SensitivityInput& in = out_.inputs[j];
+        const bool rel = in.value != 0.0;
+        draws.push_back({in.pointer, rel, rel ? x[j] / in.value - 1.0 : x[j]});
+      }
+      for (Scenario& sc : cfg.scenarios.scenarios) {
+        sc.plant.insert(sc.plant.end(), draws.begin(), draws.end());
+      }
+      return Evaluator(std::move(cfg)).evaluate_full(unit(x));
+    } catch (const std::exception& e) {
+      Evaluation ev;
+      ev.ok = false;
+      ev.failure = e.what();
+      return ev;
+    }
+  }
+
+  std::vector<double> outputs(const Evaluation& e) {
+    std::vector<double> v(out_.outputs.size(), NAN);
+    if (!e.ok) {
+      ++out_.failed;
+      if (out_.failures.size() < 5) out_.failures.push_back(e.failure);
+      return v;
+    }
+    v[0] = e.cost;
+    for (size_t i = 1; i < v.size(); ++i) {
+      const auto it = e.aggregated.find(out_.outputs[i]);
+      if (it != e.aggregated.end()) v[i] = it->second;
+    }
+    return v;
+  }
+
+  const DesignSensitivityOptions& opt_;
+  DesignSensitivity& out_;
+  ThreadPool pool_;
+  EvaluatorConfig base_;
+  std::vector<size_t> tuned_, physical_;  ///< indices into out_.inputs
+  std::unique_ptr<Evaluator> ev_;         ///< design mode, or no physical inputs
+};
 
 // One at a time: every input at the lower and at the upper end of its range.
 void one_at_a_time(PointRunner& runner, DesignSensitivity& out) {
@@ -323,11 +387,10 @@ DesignSensitivity design_sensitivity(const json& design, const std::string& path
   const scene::Scene scene0 = io::parse_scene(doc, cfg.scene_file);
   out.model = std::string(scene::to_string(scene0.model));
   out.inputs = collect_inputs(cfg, d.unit, doc, scene0, opt);
-  PointRunner runner(input_config(cfg, doc, out.inputs, opt.local.step, opt.threads, opt.farm), opt,
-                     out);
+  PointRunner runner(cfg, doc, opt, out);
   std::vector<double> x0;
   for (const auto& in : out.inputs) x0.push_back(in.value);
-  const Evaluation e0 = runner.evaluator().evaluate_full(runner.unit(x0));
+  const Evaluation e0 = runner.evaluate({x0}).front();
   if (!e0.ok) {
     throw io::InputError(path, "/unit",
                          "a design that makes a valid scene in the " + out.model + " model",
@@ -343,6 +406,7 @@ DesignSensitivity design_sensitivity(const json& design, const std::string& path
   one_at_a_time(runner, out);
   out.local_seconds = seconds_since(t0);
   out.local_step = opt.local.step;
+  out.plant = opt.plant;
   out.sobol_options = opt.sobol;
   if (opt.sobol.samples > 0) {
     t0 = std::chrono::steady_clock::now();

@@ -37,6 +37,10 @@ struct SensitivityInput {
 struct DesignSensitivityOptions {
   std::optional<std::string> model;  ///< evaluate in this model instead of the study's
   bool validation = false;           ///< on the study's validation set
+  /// true: a physical number changes the robot only, the controller keeps the design's
+  /// numbers (a plant draw, as robust-design perturbations; the stability analysis sees the
+  /// design's robot); false: the design with that number, robot and controller alike.
+  bool plant = true;
   LocalOptions local;
   SobolOptions sobol;  ///< sobol.samples == 0: no global analysis
   double default_range = 0.1;
@@ -61,6 +65,7 @@ struct DesignSensitivity {
   /// One at a time: the outputs with input j at its range's lower and upper end ([out][in]).
   std::vector<std::vector<double>> low, high;
   std::optional<SobolResult> sobol;
+  bool plant = true;  ///< how the physical numbers were changed (options.plant)
   SobolOptions sobol_options;
   long evaluations = 0;
   long failed = 0;                    ///< evaluations that made no valid scene (their outputs NaN)

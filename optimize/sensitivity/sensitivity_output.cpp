@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numeric>
 #include <sstream>
 
@@ -235,8 +236,11 @@ std::string summary_md(const DesignSensitivity& s, size_t c) {
   std::ostringstream md;
   md << "# Sensitivity of " << s.study << "\n\nDesign `" << s.design_path << "`, " << s.model
      << " model, the study's " << s.set << " (" << s.scenarios << " trials, the same in every "
-     << "evaluation). " << s.evaluations << " evaluations (local " << num(s.local_seconds)
-     << " s, Sobol " << num(s.sobol_seconds) << " s)";
+     << "evaluation). Physical numbers change "
+     << (s.plant ? "the robot only (the controller keeps the design's numbers)"
+                 : "robot and controller alike (the design with that number)")
+     << ". " << s.evaluations << " evaluations (local " << num(s.local_seconds) << " s, Sobol "
+     << num(s.sobol_seconds) << " s)";
   if (s.failed > 0) md << "; " << s.failed << " made no valid scene (their outputs are empty)";
   md << ".\n\n## " << s.outputs[c] << " = " << short_num(s.local.f0[c])
      << "\n\n| input | value | range | d/dx | ± | elasticity | at lower | at upper |"
@@ -288,6 +292,99 @@ std::string summary_md(const DesignSensitivity& s, size_t c) {
 
 }  // namespace
 
+namespace {
+
+std::string html_escape(const std::string& t) {
+  std::string out;
+  for (char ch : t) {
+    if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else if (ch == '&')
+      out += "&amp;";
+    else if (ch == '`')
+      continue;
+    else
+      out += ch;
+  }
+  return out;
+}
+
+// The cells of a markdown table row ("| a | b |"; "\\|" is a literal bar).
+std::vector<std::string> cells(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (size_t i = 1; i < line.size(); ++i) {
+    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
+      cur += '|';
+      ++i;
+    } else if (line[i] == '|') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += line[i];
+    }
+  }
+  return out;
+}
+
+// report.html: summary.md's headings, paragraphs and tables as HTML, with the two figures
+// (inlined, when gnuplot drew them) after the first table. No script: a static page.
+std::string report_html(const std::string& md, const std::string& dir, const std::string& title) {
+  std::string figures;
+  for (const char* f : {"/tornado.svg", "/sobol.svg"}) {
+    std::ifstream in(dir + f);
+    if (!in) continue;
+    std::stringstream svg;
+    svg << in.rdbuf();
+    const std::string text = svg.str();
+    const size_t start = text.find("<svg");
+    if (start != std::string::npos) figures += "<figure>" + text.substr(start) + "</figure>\n";
+  }
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << html_escape(title)
+    << "</title>\n<style>body{font-family:Helvetica,Arial,sans-serif;max-width:1000px;margin:"
+       "2em auto;padding:0 1em}table{border-collapse:collapse;display:block;overflow-x:auto}"
+       "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}td:first-child{text-"
+       "align:left}figure{margin:1em 0}svg{max-width:100%;height:auto}</style></head><body>\n";
+  std::istringstream lines(md);
+  std::string line;
+  bool in_table = false, header = false, figures_done = false;
+  while (std::getline(lines, line)) {
+    if (!line.empty() && line[0] == '|') {
+      if (line.rfind("|---", 0) == 0) continue;
+      if (!in_table) h << "<table>\n";
+      header = !in_table;
+      in_table = true;
+      h << "<tr>";
+      for (const auto& c : cells(line)) {
+        h << (header ? "<th>" : "<td>") << html_escape(c) << (header ? "</th>" : "</td>");
+      }
+      h << "</tr>\n";
+      continue;
+    }
+    if (in_table) {
+      h << "</table>\n";
+      in_table = false;
+      if (!figures_done) h << figures;
+      figures_done = true;
+    }
+    if (line.rfind("## ", 0) == 0) {
+      h << "<h2>" << html_escape(line.substr(3)) << "</h2>\n";
+    } else if (line.rfind("# ", 0) == 0) {
+      h << "<h1>" << html_escape(line.substr(2)) << "</h1>\n";
+    } else if (!line.empty()) {
+      h << "<p>" << html_escape(line) << "</p>\n";
+    }
+  }
+  if (in_table) h << "</table>\n";
+  h << "</body></html>\n";
+  return h.str();
+}
+
+}  // namespace
+
 size_t chart_output(const DesignSensitivity& s, const std::string& name) {
   const auto it = std::find(s.outputs.begin(), s.outputs.end(), name);
   if (it == s.outputs.end()) {
@@ -308,6 +405,7 @@ void write_sensitivity(const DesignSensitivity& s, const std::string& dir,
               {"study", s.study},
               {"model", s.model},
               {"set", s.set},
+              {"physical", s.plant ? "plant" : "design"},
               {"scenarios", s.scenarios},
               {"evaluations", s.evaluations},
               {"failed_evaluations", s.failed},
@@ -324,6 +422,8 @@ void write_sensitivity(const DesignSensitivity& s, const std::string& dir,
   io::write_file_atomic(dir + "/summary.md", summary_md(s, c));
   tornado_figure(s, dir, c);
   if (s.sobol) sobol_figure(s, dir, c);
+  io::write_file_atomic(dir + "/report.html",
+                        report_html(summary_md(s, c), dir, "Sensitivity of " + s.study));
 }
 
 }  // namespace pronk::optimize::sensitivity

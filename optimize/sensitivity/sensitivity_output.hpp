@@ -7,6 +7,7 @@
 //   tornado.svg       the charted output with each input at the ends of its range
 //   sobol.svg         the charted output's first-order and total indices with intervals
 //   summary.md        the tables of the charted output, and each output's strongest input
+//   report.html       summary.md as a static page with the two figures
 #pragma once
 
 #include <string>

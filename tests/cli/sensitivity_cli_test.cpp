@@ -44,31 +44,48 @@ double cost_with(const pronk::optimize::RecordedDesign& d, size_t j, double x) {
   return ev.evaluate_full(unit).cost;
 }
 
-// The cost with the scene's /body/mass scaled by `f` (the tuned parameters at the design).
-double cost_with_mass(const pronk::optimize::RecordedDesign& d, double f) {
+// The cost with the robot's mass scaled by 1 + `f`: in the scene (robot and controller alike,
+// `plant` false), or as a plant draw on every scenario (the controller keeps the design's mass).
+double cost_with_mass(const pronk::optimize::RecordedDesign& d, double f, bool plant) {
   pronk::optimize::EvaluatorConfig cfg = d.study.evaluator;
   cfg.threads = 2;
-  cfg.scene_doc["body"]["mass"] = cfg.scene_doc["body"]["mass"].get<double>() * f;
+  if (plant) {
+    for (auto& sc : cfg.scenarios.scenarios) sc.plant.push_back({"/body/mass", true, f});
+  } else {
+    cfg.scene_doc["body"]["mass"] = cfg.scene_doc["body"]["mass"].get<double>() * (1.0 + f);
+  }
   return pronk::optimize::Evaluator(cfg).evaluate_full(d.unit).cost;
+}
+
+// Checks sensitivity.json's d cost / d mass against an independent central difference.
+void check_mass_derivative(const json& s, const pronk::optimize::RecordedDesign& d, bool plant) {
+  const double m = d.study.evaluator.scene_doc["body"]["mass"].get<double>();
+  const double dm = (cost_with_mass(d, 0.01, plant) - cost_with_mass(d, -0.01, plant)) / (0.02 * m);
+  const json& rm = derivative_row(s, "cost", "mass");
+  INFO("d cost / d mass (" << (plant ? "plant" : "design") << "): sensitivity " << rm.dump()
+                           << ", independent " << dm);
+  CHECK(std::abs(rm.at("derivative").get<double>() - dm) <=
+        5.0 * rm.at("error").get<double>() + 1e-9 * std::abs(dm));
 }
 
 }  // namespace
 
 TEST_CASE(
-    "sensitivity of a committed design: files, finite elasticities, an independent "
-    "derivative, thread-independent numbers",
+    "sensitivity of a committed design: files, finite elasticities, independent derivatives, "
+    "thread-independent numbers",
     "[cli][sensitivity]") {
   TempDir dir("sensitivity_cli");
   const Run r = cli_support::pronk(
       dir, {"sensitivity", kDesign, "--out", "s1", "--samples", "4", "--threads", "2", "-q"});
   REQUIRE(r.code == 0);
   for (const char* f : {"sensitivity.json", "local.csv", "sobol.csv", "tornado.csv", "summary.md",
-                        "tornado.gp", "sobol.gp"}) {
+                        "report.html", "tornado.gp", "sobol.gp"}) {
     INFO(f);
     CHECK(!slurp(dir / ("s1/" + std::string(f))).empty());
   }
   const json s = json::parse(slurp(dir / "s1/sensitivity.json"));
   CHECK(s.at("model") == "impulse");
+  CHECK(s.at("physical") == "plant");
   CHECK(s.at("failed_evaluations") == 0);
   // The ten tuned gains, the mass and the three principal moments (the impulse model uses
   // them; it has no leg stiffness or friction).
@@ -91,9 +108,12 @@ TEST_CASE(
   CHECK(std::count(local.begin(), local.end(), '\n') ==
         1 + 14 * static_cast<long>(s.at("outputs").size()));
 
+  // The evaluation at the design is the recorded one.
+  const json recorded = pronk::io::read_json_file(kDesign);
+  CHECK(s.at("local").at("values").at("cost").get<double>() == recorded.at("cost").get<double>());
+
   // Independent central differences (step 1 %, the command's h) of the design's own evaluator.
-  const pronk::optimize::RecordedDesign d =
-      pronk::optimize::read_design(pronk::io::read_json_file(kDesign), kDesign);
+  const pronk::optimize::RecordedDesign d = pronk::optimize::read_design(recorded, kDesign);
   const size_t j = 0;  // kp_x
   const double x = d.study.evaluator.parameters[j].from_unit(d.unit[j]);
   const double h = 1e-2 * x;
@@ -103,12 +123,16 @@ TEST_CASE(
   // The independent difference at step h errs about four times the estimate (of the h/2 one).
   CHECK(std::abs(rk.at("derivative").get<double>() - dkp) <=
         5.0 * rk.at("error").get<double>() + 1e-9 * std::abs(dkp));
-  const double m = d.study.evaluator.scene_doc["body"]["mass"].get<double>();
-  const double dm = (cost_with_mass(d, 1.01) - cost_with_mass(d, 0.99)) / (0.02 * m);
-  const json& rm = derivative_row(s, "cost", "mass");
-  INFO("d cost / d mass: sensitivity " << rm.dump() << ", independent " << dm);
-  CHECK(std::abs(rm.at("derivative").get<double>() - dm) <=
-        5.0 * rm.at("error").get<double>() + 1e-9 * std::abs(dm));
+  check_mass_derivative(s, d, true);
+
+  // Physical numbers in robot and controller alike.
+  const Run rd = cli_support::pronk(dir, {"sensitivity", kDesign, "--out", "s1d", "--samples", "0",
+                                          "--threads", "2", "-q", "--physical", "design"});
+  REQUIRE(rd.code == 0);
+  const json sd = json::parse(slurp(dir / "s1d/sensitivity.json"));
+  CHECK(sd.at("physical") == "design");
+  CHECK(sd.at("sobol").is_null());
+  check_mass_derivative(sd, d, false);
 
   // One thread: the same bits.
   const Run r1 = cli_support::pronk(
