@@ -67,7 +67,7 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityArgs& args) {
                   "Relative step h of the central differences (also h/2) (default 1e-2)");
   cmd->add_option("--samples", args.samples,
                   "Saltelli base samples N: N (k + 2) evaluations for k inputs; 0: no Sobol "
-                  "indices (default 16)");
+                  "indices (default 128)");
   cmd->add_option("--bootstrap", args.bootstrap, "Bootstrap resamples of the Sobol intervals");
   cmd->add_option("--default-range", args.default_range,
                   "Relative range of every input not given with --range (default 0.1)");

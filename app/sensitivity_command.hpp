@@ -18,7 +18,7 @@ struct SensitivityArgs {
   bool validation = false;
   std::string physical = "plant";  ///< "plant" or "design"
   double local_step = 1e-2;
-  long samples = 16;
+  long samples = 128;
   long bootstrap = 200;
   double default_range = 0.1;
   std::vector<std::string> ranges;  ///< POINTER=REL

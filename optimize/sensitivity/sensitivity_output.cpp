@@ -188,7 +188,7 @@ void tornado_figure(const DesignSensitivity& s, const std::string& dir, size_t i
      << ": each input at the ends of its range, the others at the design\"\n"
      << "set xlabel noenhanced '" << s.outputs[i] << "'\n"
      << "set ytics noenhanced\nset yrange [-0.7:" << n - 0.3 << "]\n"
-     << "set style fill solid 0.7 border -1\nset grid xtics\nset key outside bottom center "
+     << "set style fill solid 0.7 border -1\nset grid xtics\nset key below "
         "horizontal\n"
      << "set arrow from " << num(s.local.f0[i]) << ", graph 0 to " << num(s.local.f0[i])
      << ", graph 1 nohead dt 2\n"
@@ -220,7 +220,8 @@ void sobol_figure(const DesignSensitivity& s, const std::string& dir, size_t i) 
      << "set title noenhanced \"Sobol indices of " << s.outputs[i] << " (" << s.study
      << ", N = " << s.sobol_options.samples << ", " << s.sobol_options.confidence * 100
      << " % bootstrap intervals)\"\n"
-     << "set ylabel 'index'\nset yrange [*:*]\nset xrange [-0.7:" << n - 0.3 << "]\n"
+     << "set ylabel 'index'\nset offsets 0, 0, graph 0.08, graph 0.02\nset xrange [-0.7:" << n - 0.3
+     << "]\n"
      << "set xtics noenhanced rotate by -35\nset grid ytics\nset key top right\n"
      << "set style fill solid 0.7 border -1\n"
      << "plot 'sobol.dat' using ($2-0.19):3:($2-0.36):($2-0.02):(0):3:xtic(1) with boxxyerror "
