@@ -168,3 +168,28 @@ TEST_CASE("sensitivity: bad input exits 2 naming the option or the pointer", "[c
   CHECK(b.code == 2);
   CHECK_THAT(b.err, Contains("bad.json"));
 }
+
+#ifdef PRONK_MPIEXEC
+TEST_CASE("sensitivity under mpirun -np 2: the files of one process", "[cli][sensitivity][mpi]") {
+  TempDir dir("sensitivity_cli");
+  const Run one = cli_support::pronk(
+      dir, {"sensitivity", kDesign, "--out", "one", "--samples", "4", "--threads", "1", "-q"});
+  REQUIRE(one.code == 0);
+  std::string cmd = "cd " + quote(dir.path) + " && ASAN_OPTIONS=detect_leaks=0 ";
+  cmd += PRONK_MPIEXEC;
+  cmd += " -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ";
+  cmd += quote(PRONK_EXE);
+  cmd += " sensitivity ";
+  cmd += quote(kDesign);
+  cmd += " --out mpi --samples 4 -q >";
+  cmd += quote(dir / ".mpi_out");
+  cmd += " 2>&1";
+  const int status = std::system(cmd.c_str());
+  INFO(slurp(dir / ".mpi_out"));
+  REQUIRE((status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0));
+  for (const char* f : {"local.csv", "sobol.csv", "tornado.csv"}) {
+    INFO(f);
+    CHECK(slurp(dir / ("mpi/" + std::string(f))) == slurp(dir / ("one/" + std::string(f))));
+  }
+}
+#endif
