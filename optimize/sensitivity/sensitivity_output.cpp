@@ -24,7 +24,7 @@ json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 std::string num(double v) {
   if (!std::isfinite(v)) return "";
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
+  std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
@@ -240,8 +240,8 @@ std::string summary_md(const DesignSensitivity& s, size_t c) {
      << "evaluation). Physical numbers change "
      << (s.plant ? "the robot only (the controller keeps the design's numbers)"
                  : "robot and controller alike (the design with that number)")
-     << ". " << s.evaluations << " evaluations (local " << num(s.local_seconds) << " s, Sobol "
-     << num(s.sobol_seconds) << " s)";
+     << ". " << s.evaluations << " evaluations (local " << short_num(s.local_seconds)
+     << " s, Sobol " << short_num(s.sobol_seconds) << " s)";
   if (s.failed > 0) md << "; " << s.failed << " made no valid scene (their outputs are empty)";
   md << ".\n\n## " << s.outputs[c] << " = " << short_num(s.local.f0[c])
      << "\n\n| input | value | range | d/dx | ± | elasticity | at lower | at upper |"
