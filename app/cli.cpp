@@ -11,6 +11,7 @@
 #include "app/map_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/reproduce_command.hpp"
+#include "app/sensitivity_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/view_command.hpp"
 #include "io/build_info.hpp"
@@ -51,6 +52,8 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* optimize = add_optimize_command(app, optimize_args);
   ReproduceArgs reproduce_args;
   CLI::App* reproduce = add_reproduce_command(app, reproduce_args);
+  SensitivityArgs sensitivity_args;
+  CLI::App* sensitivity = add_sensitivity_command(app, sensitivity_args);
   MapArgs map_args;
   CLI::App* map = add_map_command(app, map_args);
   ViewArgs view_args;
@@ -93,6 +96,7 @@ int run_cli(int argc, const char* const* argv) {
     if (optimize->parsed()) return run_optimize(optimize_args);
     if (reproduce->parsed()) return run_reproduce(reproduce_args);
     if (compare->parsed()) return run_compare(compare_args);
+    if (sensitivity->parsed()) return run_sensitivity(sensitivity_args);
     if (design->parsed()) return run_design(design_args);
     if (map->parsed()) return run_map_command(map_args);
     if (view->parsed()) return run_view(view_args);
