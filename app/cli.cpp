@@ -66,7 +66,7 @@ int run_cli(int argc, const char* const* argv) {
   CLI::App* bench = add_bench_command(app, bench_args);
   // Every command that draws figures can skip gnuplot: the data and the .gp scripts stay.
   bool no_figures = false;
-  for (CLI::App* cmd : {simulate, optimize, reproduce, design, map, compare}) {
+  for (CLI::App* cmd : {simulate, optimize, reproduce, design, map, compare, sensitivity}) {
     cmd->add_flag("--no-figures", no_figures,
                   "Write the CSV data and gnuplot scripts but render no SVG figures (faster; "
                   "`gnuplot NAME.gp` in the output directory renders one later)");
