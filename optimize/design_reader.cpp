@@ -7,11 +7,12 @@
 #include <functional>
 #include <set>
 
-#include "optimize/design_reader_detail.hpp"
-#include "optimize/parameters.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
+#include "io/write/table.hpp"
+#include "optimize/design_reader_detail.hpp"
+#include "optimize/parameters.hpp"
 
 namespace pronk::optimize {
 
@@ -64,11 +65,7 @@ bool close(double a, double b) {
   return std::abs(a - b) <= kDerivedRtol * std::max(std::abs(a), std::abs(b)) + 1e-300;
 }
 
-std::string num(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string num(double x) { return io::exact_number(x); }
 
 // Membership in `names` as a predicate.
 std::function<bool(const std::string&)> in(const std::set<std::string>& names) {

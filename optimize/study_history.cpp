@@ -5,8 +5,9 @@
 #include <fstream>
 #include <map>
 
-#include "optimize/parameters.hpp"
 #include "io/write/atomic_file.hpp"
+#include "io/write/table.hpp"
+#include "optimize/parameters.hpp"
 
 namespace pronk::optimize {
 
@@ -14,11 +15,7 @@ namespace {
 
 constexpr const char* kTimingsHeader = "index,wall_time_s,binding_time_s,simulations,strides\n";
 
-std::string csv_num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string csv_num(double x) { return io::exact_number(x); }
 
 // The CSV line of one journal record; `best` is the best feasible cost so far (updated).
 std::string history_line(const JournalRecord& r, const Evaluator& ev, double* best) {

@@ -8,6 +8,7 @@
 #include "io/build_info.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/run_output.hpp"
+#include "io/write/table.hpp"
 
 namespace pronk::io {
 
@@ -16,11 +17,7 @@ namespace {
 using nlohmann::json;
 
 // Every bit, as the other CSV outputs (table_csv).
-std::string full(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string full(double v) { return exact_number(v); }
 
 // For reading: 6 significant digits.
 std::string short_number(double v) {

@@ -24,4 +24,10 @@ std::string table_csv(const Table& t) {
   return out;
 }
 
+std::string exact_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
 }  // namespace pronk::io

@@ -22,4 +22,7 @@ struct Table {
 /// outputs of identical runs are byte-identical).
 std::string table_csv(const Table& t);
 
+/// x as %.17g: every bit kept (the CSV and journal outputs' number format).
+std::string exact_number(double x);
+
 }  // namespace pronk::io

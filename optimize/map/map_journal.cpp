@@ -9,6 +9,7 @@
 
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
+#include "io/write/table.hpp"
 
 namespace pronk::optimize::map {
 
@@ -16,11 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string num(double x) { return io::exact_number(x); }
 
 // Refuses line `line` of the journal (`at`: " /key" or "").
 [[noreturn]] void refuse(const std::string& path, long line, const std::string& at,

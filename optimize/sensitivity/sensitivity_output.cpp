@@ -12,6 +12,7 @@
 #include "io/load/input_error.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/plot.hpp"
+#include "io/write/table.hpp"
 
 namespace pronk::optimize::sensitivity {
 
@@ -21,12 +22,7 @@ using nlohmann::json;
 
 json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return std::isfinite(v) ? io::exact_number(v) : std::string(); }
 
 std::string short_num(double v) {
   if (!std::isfinite(v)) return "–";

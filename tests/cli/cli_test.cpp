@@ -346,7 +346,8 @@ TEST_CASE("simulate --model pulse overrides the scene's model", "[cli][outputs]"
   check_csv(slurp(dir / "p/strides.csv"), 2);
 }
 
-TEST_CASE("simulate without figures (--no-figures) writes the same data and the scripts, no SVG", "[cli][outputs]") {
+TEST_CASE("simulate without figures (--no-figures) writes the same data and the scripts, no SVG",
+          "[cli][outputs]") {
   TempDir dir("cli");
   const std::string scene = kSceneDir + "case3_legged_pulse.json";
   const Run with =
