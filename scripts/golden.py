@@ -29,6 +29,9 @@ DIST_BIG = ('/disturbances=[{"time": 0.9, "linear_impulse": [0.2, 0.3, 0], '
 # The full model's cases ran on RODAS4 (rtol 1e-6, atol 1e-8) before "auto" became the default;
 # they name it so their goldens stand, and the *_auto cases follow the default.
 RODAS4 = '/pseudo_rigid/solver={"method": "rodas4"}'
+# The robot's body became rigid by default; the cases recorded on four masses name them so
+# their goldens stand (the *_auto cases follow the defaults).
+FOUR = '/pseudo_rigid/body="four_masses"'
 DIST_FULL = ('/disturbances=[{"time": 0.7, "linear_impulse": [0.5, 0.8, 0], '
              '"angular_impulse": [0.01, -0.01, 0.005]}]')
 
@@ -59,36 +62,36 @@ CASES = {
                             ["/simulation/sample_interval=0.05"]),
     # The full (pseudo-rigid) model.
     "case5_pr_hop_height": ("studies/scenes/case5_pr_hop_height.json",
-                            ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4]),
+                            ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4, FOUR]),
     "case5_rigid_disturbed": ("studies/scenes/case5_pr_hop_height.json",
                               ["/simulation/duration=1.2", "/simulation/sample_interval=0.02",
                                '/pseudo_rigid/body="rigid"',
                                DIST_FULL, RODAS4]),
     "case6_pr_drop": ("studies/scenes/case6_pr_drop.json",
-                      ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4]),
+                      ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4, FOUR]),
     "case7_pr_height_change": ("studies/scenes/case7_pr_height_change.json",
-                               ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4]),
+                               ["/simulation/duration=1.5", "/simulation/sample_interval=0.02", RODAS4, FOUR]),
     "pr_running": ("studies/scenes/pr_running.json",
-                   ["/simulation/duration=1.2", "/simulation/sample_interval=0.02", RODAS4]),
+                   ["/simulation/duration=1.2", "/simulation/sample_interval=0.02", RODAS4, FOUR]),
     "pr_running_auto": ("studies/scenes/pr_running.json",
                         ["/simulation/duration=1.2", "/simulation/sample_interval=0.02"]),
     "case5_auto": ("studies/scenes/case5_pr_hop_height.json",
                    ["/simulation/duration=1.5", "/simulation/sample_interval=0.02"]),
     "pr_running_verlet": ("studies/scenes/pr_running.json",
                           ["/simulation/duration=1.2", "/simulation/sample_interval=0.02",
-                           '/pseudo_rigid/solver={"method": "verlet", "h_fixed": 5e-5}']),
+                           '/pseudo_rigid/solver={"method": "verlet", "h_fixed": 5e-5}', FOUR]),
     "case6_low_fall": ("studies/scenes/case6_pr_drop.json",
                        ["/simulation/duration=1.5", "/simulation/sample_interval=0.02",
-                        "/simulation/fall/min_height=0.3", RODAS4]),
+                        "/simulation/fall/min_height=0.3", RODAS4, FOUR]),
     "case5_euler_diverges": ("studies/scenes/case5_pr_hop_height.json",
                              ["/simulation/duration=1", "/simulation/sample_interval=0.02",
-                              '/pseudo_rigid/solver={"method": "euler", "h_fixed": 2e-3}']),
+                              '/pseudo_rigid/solver={"method": "euler", "h_fixed": 2e-3}', FOUR]),
     "case5_step_budget": ("studies/scenes/case5_pr_hop_height.json",
                           ["/simulation/duration=1", "/simulation/sample_interval=0.02",
-                           '/pseudo_rigid/solver={"method": "rodas4", "max_steps": 1500}']),
+                           '/pseudo_rigid/solver={"method": "rodas4", "max_steps": 1500}', FOUR]),
     "fidelity_duty15_full": ("studies/scenes/fidelity_duty15.json",
                              ['/model="pseudo_rigid"', "/simulation/duration=1.2",
-                              "/simulation/sample_interval=0.02", RODAS4]),
+                              "/simulation/sample_interval=0.02", RODAS4, FOUR]),
     # Generic pseudo-rigid mechanisms.
     "explicit_instability": ("studies/mechanisms/explicit_instability.json",
                              ["/simulation/output_interval=0.02"]),

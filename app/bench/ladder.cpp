@@ -109,7 +109,8 @@ FidelityPoint full_model_rung(const scene::Scene& s, const BenchConfig& c, bool 
   // (measured); "auto" (1e7 N/m) agrees too but costs 2.5x more.
   sp.pseudo_rigid.internal_stiffness = 1e6;
   sp.pseudo_rigid.internal_auto = false;
-  if (rigid) sp.pseudo_rigid.body = scene::PseudoRigid::BodyKind::kRigid;
+  sp.pseudo_rigid.body =
+      rigid ? scene::PseudoRigid::BodyKind::kRigid : scene::PseudoRigid::BodyKind::kFourMasses;
   RunOptions opts;
   opts.record_trajectory = false;
   const Timed<RunResult> run = timed(1, [&] { return simulate(sp, opts); });

@@ -90,7 +90,10 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   const std::string hips = r.choice_or("hips", "ghost_points", {"ghost_points", "dummy_masses"});
   p.hips =
       hips == "dummy_masses" ? scene::PseudoRigid::Hips::kDummy : scene::PseudoRigid::Hips::kGhost;
-  const std::string body = r.choice_or("body", "four_masses", {"four_masses", "rigid"});
+  // Rigid unless the scene asks for the body's flexibility (dummy-mass hips need four masses).
+  const std::string body =
+      r.choice_or("body", p.hips == scene::PseudoRigid::Hips::kDummy ? "four_masses" : "rigid",
+                  {"four_masses", "rigid"});
   p.body = body == "rigid" ? scene::PseudoRigid::BodyKind::kRigid
                            : scene::PseudoRigid::BodyKind::kFourMasses;
   if (p.body == scene::PseudoRigid::BodyKind::kRigid &&

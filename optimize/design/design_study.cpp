@@ -22,7 +22,8 @@ json with_overrides(json doc, const std::vector<std::string>& overrides) {
   return doc;
 }
 
-std::string number(double x) { return io::describe(json(x)); }
+// A JSON number, round-trip exact (an override's value).
+std::string number(double x) { return json(x).dump(); }
 
 // The robot must have legs: pronk design designs legged running.
 void check_legged(const json& doc, const scene::Scene& s, const std::string& file) {

@@ -107,12 +107,15 @@ struct PseudoRigid {
   /// (Ridgely 2001, §2.7); `spring` = a foot mass on a line through the hip (prismatic
   /// leg) with a leg spring, damper and actuator in parallel (Ridgely 2001, §2.8).
   enum class Legs { kForce, kSpring };
-  /// Body: four masses held by six internal springs (the default, the body's flexibility
-  /// resolved), or one rigid body with the same mass and inertia (sim/pseudorigid/rigid_body.hpp;
-  /// ghost-point hips only).
+  /// Body: one rigid body with the robot's mass and inertia (the default;
+  /// sim/pseudorigid/rigid_body.hpp; ghost-point hips only), or four masses held by six
+  /// internal springs (the body's flexibility resolved; the default with dummy-mass hips).
+  /// A flat robot's four masses form a flat tetrahedron whose bending mode is soft (tens of
+  /// hertz at 1e5 N/m) and takes up the thrust, so the body is rigid unless a scene asks for
+  /// its flexibility (docs/full_model.md#the-body).
   enum class BodyKind { kFourMasses, kRigid };
   Hips hips = Hips::kGhost;
-  BodyKind body = BodyKind::kFourMasses;
+  BodyKind body = BodyKind::kRigid;
   double dummy_ratio = 0.02;  ///< dummy mass / body mass [-]
   Legs legs = Legs::kSpring;
   double internal_stiffness = 1e5;   ///< body springs, also the leg slides [N/m]

@@ -98,6 +98,29 @@ TEST_CASE("pronk design: the derived study is a staged study as written", "[desi
   }
 }
 
+TEST_CASE("pronk design: a scene with its own pulse section gets the derived pulse duration",
+          "[design]") {
+  // pr_running gives "pulse": the derived study overrides its duration with a JSON number.
+  const std::string file = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
+  json scene = io::read_json_file(file);
+  json study = derive_design_study(scene, file, "scene.json", DesignOptions{});
+  study["scene"] = scene;
+  const StagedStudy st = parse_staged_study(study, "study.json", ".");
+  const json& p = parameter(study, "pulse_duration");
+  const double tf = 2.0 * std::sqrt(2.0 * 9.81 * 0.2) / 9.81;
+  const double start = p.at("initial");
+  CHECK(start / (start + tf) == Approx(0.2).epsilon(1e-12));
+  bool found = false;
+  for (const auto& o : study.at("scene_overrides")) {
+    const std::string s = o.get<std::string>();
+    if (s.rfind("/pulse/duration=", 0) != 0) continue;
+    found = true;
+    CHECK(std::stod(s.substr(16)) == Approx(start).epsilon(1e-15));
+  }
+  CHECK(found);
+  CHECK(st.stages.size() == 2);
+}
+
 TEST_CASE("pronk design: --tune-nominal keeps the tuning robot nominal, not the validation",
           "[design]") {
   const json scene = io::read_json_file(family("tripod"));

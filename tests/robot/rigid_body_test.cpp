@@ -122,7 +122,12 @@ TEST_CASE("rigid body: scene setting, unused settings, refused dummy hips", "[ri
   CHECK(listed(s, "/pseudo_rigid/strain_budget"));
   CHECK(listed(s, "/pseudo_rigid/error_norm"));
   CHECK_FALSE(listed(s, "/pseudo_rigid/internal_stiffness"));
-  CHECK_FALSE(listed(rb_load("pr_running.json"), "/pseudo_rigid/strain_budget"));
+  CHECK_FALSE(listed(rb_load("pr_running.json", {"/pseudo_rigid/body=\"four_masses\""}),
+                     "/pseudo_rigid/strain_budget"));
+  // The default body is rigid; with dummy-mass hips, four masses.
+  CHECK(rb_load("pr_running.json").pseudo_rigid.body == scene::PseudoRigid::BodyKind::kRigid);
+  CHECK(rb_load("pr_running.json", {"/pseudo_rigid/hips=\"dummy_masses\""}).pseudo_rigid.body ==
+        scene::PseudoRigid::BodyKind::kFourMasses);
   // Force legs: no slides, nothing of the body's springs is used.
   const scene::Scene f = rb_load("case5_pr_hop_height.json", {"/pseudo_rigid/body=\"rigid\""});
   for (const char* p : {"/pseudo_rigid/internal_stiffness", "/pseudo_rigid/internal_damping",
@@ -130,7 +135,8 @@ TEST_CASE("rigid body: scene setting, unused settings, refused dummy hips", "[ri
     INFO(p);
     CHECK(listed(f, p));
   }
-  CHECK_FALSE(listed(rb_load("case5_pr_hop_height.json"), "/pseudo_rigid/internal_stiffness"));
+  CHECK_FALSE(listed(rb_load("case5_pr_hop_height.json", {"/pseudo_rigid/body=\"four_masses\""}),
+                     "/pseudo_rigid/internal_stiffness"));
   try {
     rb_load("pr_running.json",
             {"/pseudo_rigid/body=\"rigid\"", "/pseudo_rigid/hips=\"dummy_masses\""});
@@ -157,8 +163,9 @@ void rb_agree(const std::string& scene, const std::vector<std::string>& extra, s
   std::vector<std::string> set = {std::string("/pseudo_rigid/internal_stiffness=") + stiffness,
                                   R"(/pseudo_rigid/solver={"method":"rodas4"})"};
   set.insert(set.end(), extra.begin(), extra.end());
+  set.push_back("/pseudo_rigid/body=\"four_masses\"");
   const robot::RobotRunResult four = robot::simulate(rb_load(scene, set));
-  set.push_back("/pseudo_rigid/body=\"rigid\"");
+  set.back() = "/pseudo_rigid/body=\"rigid\"";
   const robot::RobotRunResult rigid = robot::simulate(rb_load(scene, set));
   INFO(scene << ": four-mass " << four.run.reason << "; rigid " << rigid.run.reason);
   REQUIRE(four.run.status == reduced::RunStatus::kCompleted);

@@ -230,15 +230,16 @@ TEST_CASE("robot pseudo_rigid energy_blowup_factor: default, validated, ends a r
       CHECK(e.found() == found);
     }
   }
-  // The default run's balance drifts by ~7e-8 J over 0.5 s (scale 7.4 J): far below 10 x the
-  // scale, far above 1e-12 x the scale. The reason names a factor the scene set (not the
+  // The four-mass body's balance drifts by ~7e-8 J over 0.5 s (scale 7.4 J): far below 10 x
+  // the scale, far above 1e-12 x the scale. The reason names a factor the scene set (not the
   // default: the reasons of default runs stay as they were).
   const robot::RobotRunResult ok =
-      robot::simulate(load("case5_pr_hop_height.json", {"/simulation/duration=0.5"}));
+      robot::simulate(load("case5_pr_hop_height.json",
+                           {"/simulation/duration=0.5", "/pseudo_rigid/body=\"four_masses\""}));
   REQUIRE(ok.run.status == reduced::RunStatus::kCompleted);
-  const robot::RobotRunResult r = robot::simulate(
-      load("case5_pr_hop_height.json",
-           {"/simulation/duration=0.5", "/pseudo_rigid/energy_blowup_factor=1e-12"}));
+  const robot::RobotRunResult r = robot::simulate(load(
+      "case5_pr_hop_height.json", {"/simulation/duration=0.5", "/pseudo_rigid/body=\"four_masses\"",
+                                   "/pseudo_rigid/energy_blowup_factor=1e-12"}));
   INFO(r.run.reason);
   CHECK(r.run.status == reduced::RunStatus::kDiverged);
   CHECK(r.run.reason.find("energy blow-up") != std::string::npos);
@@ -336,8 +337,10 @@ TEST_CASE("stance attitude feedback removes the running robot's period-2 roll mo
 // h = 1.2e-4 s, auto's choice, lands the third stride at -1.1 deg instead of +2.1 deg and does
 // not fall by 1.5 s; docs/solvers.md, "Limits").
 TEST_CASE("level feet let the running robot recover from a 10 deg roll landing", "[robot][heavy]") {
+  // (the four-mass body these bars were measured on)
   const std::vector<std::string> shortened = {"/simulation/duration=1.5",
-                                              R"(/pseudo_rigid/solver={"method":"rodas4"})"};
+                                              R"(/pseudo_rigid/solver={"method":"rodas4"})",
+                                              "/pseudo_rigid/body=\"four_masses\""};
   std::vector<std::string> off = shortened;
   off.push_back("/pseudo_rigid/level_feet=false");
   const robot::RobotRunResult open = robot::simulate(load("pr_running.json", off), {false});
