@@ -124,10 +124,12 @@ TEST_CASE("rigid body: scene setting, unused settings, refused dummy hips", "[ri
   CHECK_FALSE(listed(s, "/pseudo_rigid/internal_stiffness"));
   CHECK_FALSE(listed(rb_load("pr_running.json", {"/pseudo_rigid/body=\"four_masses\""}),
                      "/pseudo_rigid/strain_budget"));
-  // The default body is rigid; with dummy-mass hips, four masses.
-  CHECK(rb_load("pr_running.json").pseudo_rigid.body == scene::PseudoRigid::BodyKind::kRigid);
-  CHECK(rb_load("pr_running.json", {"/pseudo_rigid/hips=\"dummy_masses\""}).pseudo_rigid.body ==
-        scene::PseudoRigid::BodyKind::kFourMasses);
+  // The default body is rigid (a scene that leaves it out: the family's tripod); with
+  // dummy-mass hips, four masses. pr_running states the four masses it was recorded on.
+  CHECK(rb_load("family/tripod.json").pseudo_rigid.body == scene::PseudoRigid::BodyKind::kRigid);
+  CHECK(rb_load("family/tripod.json", {R"(/pseudo_rigid={"hips": "dummy_masses"})"})
+            .pseudo_rigid.body == scene::PseudoRigid::BodyKind::kFourMasses);
+  CHECK(rb_load("pr_running.json").pseudo_rigid.body == scene::PseudoRigid::BodyKind::kFourMasses);
   // Force legs: no slides, nothing of the body's springs is used.
   const scene::Scene f = rb_load("case5_pr_hop_height.json", {"/pseudo_rigid/body=\"rigid\""});
   for (const char* p : {"/pseudo_rigid/internal_stiffness", "/pseudo_rigid/internal_damping",
