@@ -73,6 +73,29 @@ void parse_stance_attitude(JsonReader& r, scene::PseudoRigid* p, GivenSettings* 
   a.finish();
 }
 
+// "hip_rotation": false (fixed hips), true or "neutral_point" (legs placed by the linear
+// neutral-point rule), "pendulum" (the default: the stance solved as an inverted pendulum).
+// A resolved scene writes true for the neutral-point rule, as scenes recorded before the
+// pendulum rule did, so their hashes stand.
+void parse_hip_rotation(JsonReader& r, const json& node, scene::PseudoRigid* p) {
+  if (!r.has("hip_rotation")) {
+    r.optional("hip_rotation");
+    return;
+  }
+  const json& v = node.at("hip_rotation");
+  if (v.is_boolean()) {
+    p->hip_rotation = r.boolean_or("hip_rotation", p->hip_rotation);
+    p->pendulum_placement = false;
+    return;
+  }
+  if (!v.is_string()) {
+    throw r.error("hip_rotation", "true, false, \"neutral_point\" or \"pendulum\"", describe(v));
+  }
+  p->hip_rotation = true;
+  p->pendulum_placement =
+      r.choice_or("hip_rotation", "pendulum", {"pendulum", "neutral_point"}) == "pendulum";
+}
+
 // The settings added after designs were first recorded, as the resolved scene writes them:
 // pseudo_rigid_to_json leaves each out at its default, add_defaulted_settings puts it back.
 json late_settings(const scene::PseudoRigid& p) {
@@ -127,7 +150,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
       r.choice_or("error_norm", p.body_error_norm ? "body" : "state", {"state", "body"}) == "body";
   p.friction = r.number_or("friction", p.friction, 0.0, 10.0);
   p.slip_velocity = r.number_or("slip_velocity", p.slip_velocity, 1e-9, 10.0);
-  p.hip_rotation = r.boolean_or("hip_rotation", p.hip_rotation);
+  parse_hip_rotation(r, node, &p);
   p.max_leg_angle =
       r.number_or("max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI, 0.0, 80.0) * M_PI / 180.0;
   parse_stance_attitude(r, &p, given);
@@ -196,7 +219,8 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
             {"error_norm", p.body_error_norm ? "body" : "state"},
             {"friction", p.friction},
             {"slip_velocity", p.slip_velocity},
-            {"hip_rotation", p.hip_rotation},
+            {"hip_rotation",
+             p.hip_rotation && p.pendulum_placement ? json("pendulum") : json(p.hip_rotation)},
             {"max_leg_angle_deg", p.max_leg_angle * 180.0 / M_PI},
             {"stance_attitude",
              {{"kp", {p.stance_kp[0], p.stance_kp[1]}},

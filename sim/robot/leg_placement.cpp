@@ -53,6 +53,24 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
   return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
 }
 
+/// The inverted-pendulum placement (see the header).
+Vector3d pendulum_leg_direction(const Vector3d& P, const Vector3d& v0, double stance, double leg,
+                                double mass, double max_angle, bool held_roll,
+                                const Vector3d& v_takeoff) {
+  Eigen::Vector2d r = 0.5 * stance * v0.head<2>();
+  if (P.z() > 1e-12 && stance > 0.0 && mass > 0.0) {
+    const double w = std::sqrt(P.z() / (stance * mass * leg));  // [1/s]
+    const double wt = w * stance;
+    r = ((std::cosh(wt) - 1.0) * v0.head<2>() - P.head<2>() / mass) / (w * std::sinh(wt));
+  }
+  if (held_roll && v_takeoff.z() > 1e-12) {
+    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
+  }
+  const double r_max = leg * std::sin(max_angle);
+  if (r.norm() > r_max) r *= r_max / r.norm();
+  return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+}
+
 double free_leg_response(const Vector3d& P, double stance, double leg, double mass) {
   return std::clamp(1.0 - stance * P.norm() / (4.0 * mass * leg), 0.1, 1.0);
 }
@@ -128,8 +146,12 @@ std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::
   Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass_;
   v_takeoff.head<2>() += data_.placement_trim / total_mass_;
   v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
-  const Vector3d d = free_leg_direction(P, v_mean, data_.spring_stance, model_.rest_length[0],
-                                        prs_.max_leg_angle, held_roll, v_takeoff);
+  const Vector3d d =
+      prs_.pendulum_placement
+          ? pendulum_leg_direction(P, s.velocity, data_.spring_stance, model_.rest_length[0],
+                                   total_mass_, prs_.max_leg_angle, held_roll, v_takeoff)
+          : free_leg_direction(P, v_mean, data_.spring_stance, model_.rest_length[0],
+                               prs_.max_leg_angle, held_roll, v_takeoff);
   return std::vector<Vector3d>(legs_, R_td.transpose() * d);
 }
 

@@ -36,6 +36,17 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
 Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
                             double max_angle, bool held_roll, const Vector3d& v_takeoff);
 
+/// The same placement with the stance's horizontal motion solved as an inverted pendulum
+/// over the foot: with the mean vertical ground force F = P_z / T_s on the leg height h, the
+/// hip's horizontal offset x from its foot obeys x'' = w^2 x, w^2 = F / (m h), so the stance
+/// gives P_h = m (w sinh(wT) x0 + (cosh(wT) - 1) v0) for an offset x0 and speed v0 at
+/// touchdown; the foot goes at -x0 for the P_h asked. For small wT it is free_leg_direction's
+/// rule with v0 for the mean speed (r = T v0 / 2 - h P_h / P_z); pr_running's stances have
+/// wT ~ 1.3-1.7, where the linear rule's foot is several mm too far forward.
+Vector3d pendulum_leg_direction(const Vector3d& P, const Vector3d& v0, double stance, double leg,
+                                double mass, double max_angle, bool held_roll,
+                                const Vector3d& v_takeoff);
+
 /// How the horizontal impulse a placed leg delivers answers a change of the impulse it was
 /// placed for, linearised: the foot moved by -leg dP / |P| changes the impulse by dP / (1 - c),
 /// c = T_s |P| / (4 m leg), because the CoM's own speed-up moves it further over the foot

@@ -150,6 +150,12 @@ struct PseudoRigid {
   /// Hip actuators place each leg at the flight apex along the impulse the
   /// controller will ask it for at the predicted touchdown (running).
   bool hip_rotation = true;
+  /// How the hips place the legs (with hip_rotation): true = the stance's horizontal motion
+  /// solved as an inverted pendulum over the foot (sim/robot/leg_placement.hpp,
+  /// pendulum_leg_direction; scene "hip_rotation": "pendulum", the default); false = the
+  /// linear neutral-point rule (free_leg_direction; "hip_rotation": true or "neutral_point",
+  /// what the scenes recorded before it ran).
+  bool pendulum_placement = true;
   double max_leg_angle = 0.5;  ///< hip placement limit from body -z [rad]
   /// Stance attitude feedback (running): while feet are on the ground, the grounded
   /// legs' actuators add forces with zero net push that give the body a moment
