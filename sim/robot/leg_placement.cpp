@@ -28,6 +28,23 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
   return u;
 }
 
+namespace {
+
+/// The unit leg (hip -> foot) for the foot at horizontal offset r from the hip [m]: with the
+/// stance roll held, its lateral part along the takeoff velocity instead (see
+/// free_leg_direction); within max_angle of the vertical.
+Vector3d leg_for_foot(Eigen::Vector2d r, double leg, double max_angle, bool held_roll,
+                      const Vector3d& v_takeoff) {
+  if (held_roll && v_takeoff.z() > 1e-12) {
+    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
+  }
+  const double r_max = leg * std::sin(max_angle);
+  if (r.norm() > r_max) r *= r_max / r.norm();
+  return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+}
+
+}  // namespace
+
 /// Leg placement for free stance hips (world frame, unit hip -> foot): the leg,
 /// a strut from hip to foot during the stance, pushes along its mean direction,
 /// so the foot is put where the mean foot -> hip line over the stance is parallel
@@ -45,12 +62,7 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
                             double max_angle, bool held_roll, const Vector3d& v_takeoff) {
   Eigen::Vector2d r = 0.5 * stance * v.head<2>();
   if (P.z() > 1e-12) r -= leg * P.head<2>() / P.norm();
-  if (held_roll && v_takeoff.z() > 1e-12) {
-    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
-  }
-  const double r_max = leg * std::sin(max_angle);
-  if (r.norm() > r_max) r *= r_max / r.norm();
-  return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff);
 }
 
 /// The inverted-pendulum placement (see the header).
@@ -63,12 +75,7 @@ Vector3d pendulum_leg_direction(const Vector3d& P, const Vector3d& v0, double st
     const double wt = w * stance;
     r = ((std::cosh(wt) - 1.0) * v0.head<2>() - P.head<2>() / mass) / (w * std::sinh(wt));
   }
-  if (held_roll && v_takeoff.z() > 1e-12) {
-    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
-  }
-  const double r_max = leg * std::sin(max_angle);
-  if (r.norm() > r_max) r *= r_max / r.norm();
-  return Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff);
 }
 
 double free_leg_response(const Vector3d& P, double stance, double leg, double mass) {
