@@ -329,13 +329,20 @@ json evaluation_json(const Evaluation& e) {
   return {{"cost", e.cost}, {"ok", e.ok}, {"metrics", m}};
 }
 
+// A stage's directory as the design and summary record it: relative to the study's own
+// output directory, so that a result moved or cloned elsewhere still names its stages.
+std::string relative_stage_dir(const std::string& stage_dir, const std::string& out_dir) {
+  const std::string prefix = out_dir + "/";
+  return stage_dir.rfind(prefix, 0) == 0 ? stage_dir.substr(prefix.size()) : stage_dir;
+}
+
 json staged_design(const StagedStudy& st, const StagedOutcome& o, const json& doc) {
   json d = o.stages.back().design;
   json stages = json::array();
   for (const auto& s : o.stages) {
     stages.push_back({{"name", s.name},
                       {"model", s.model},
-                      {"directory", s.out_dir},
+                      {"directory", relative_stage_dir(s.out_dir, o.out_dir)},
                       {"parameters", s.values},
                       {"cost", s.design.at("cost")},
                       {"initial_cost", s.design.at("initial_cost")},
@@ -372,7 +379,7 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
     md << "| " << s.name << " | " << s.model << " | "
        << s.design.at("optimizer").value("evaluations", 0L) << " | "
        << s.design.value("initial_cost", 0.0) << " | " << s.design.value("cost", 0.0) << " | `"
-       << s.out_dir << "` |\n";
+       << relative_stage_dir(s.out_dir, o.out_dir) << "` |\n";
   }
   md << "\nParameters after each stage:\n\n| parameter |";
   for (const auto& s : o.stages) md << " " << s.name << " |";
@@ -415,6 +422,19 @@ std::string staged_summary(const StagedStudy& st, const StagedOutcome& o) {
   return md.str();
 }
 
+// What the stages after k still run, for the progress note: each stage's time left is
+// estimated once it runs, since models differ in cost by orders of magnitude.
+std::string stages_after(const StagedStudy& st, size_t k,
+                         const std::map<std::string, double>& initial) {
+  std::string out;
+  for (size_t j = k + 1; j < st.stages.size(); ++j) {
+    out += (out.empty() ? "; then " : ", ") + st.stages[j].name + " (" +
+           std::to_string(stage_study(st, j, initial).optimizer.max_evaluations) +
+           " evaluations, " + st.stages[j].model + " model)";
+  }
+  return out;
+}
+
 }  // namespace
 
 StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt) {
@@ -431,7 +451,8 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
     progress_note(opt.progress, st.name + ": stage " + std::to_string(k + 1) + "/" +
                                     std::to_string(st.stages.size()) + " " + st.stages[k].name +
                                     " (" + st.stages[k].model + " model), " +
-                                    format_duration(staged_now_s() - t0) + " elapsed");
+                                    format_duration(staged_now_s() - t0) + " elapsed" +
+                                    stages_after(st, k, initial));
     o.stages.push_back(
         run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
     if (stopped) {

@@ -89,13 +89,25 @@ json gain(const std::string& name, const std::string& pointer, double value) {
 
 const char* kAxes[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
+// The full model's fore-aft position loop (x PD and position trim) with its poles at
+// kPositionPoles on the design's stride (flight from the hop height, the duty's stance).
+scene::PositionLoop position_loop(const Derived& d) {
+  const scene::Scene& s = d.full;
+  const double flight = scene::hop_flight_time(s.gravity, s.controller.hop_height, 0.0, false);
+  return scene::place_position_poles(scene::kPositionPoles, {flight, d.stance0});
+}
+
 // The body controller's gains the pulse stage tunes (attitude) and the full stage retunes
-// with the position gains and banking.
-void body_gains(const scene::Scene& s, json* params, std::vector<std::string>* pulse,
+// with the position gains and banking. In the full model the x gains start from the
+// placed position loop (per unit mass).
+void body_gains(const Derived& d, bool full_model, json* params, std::vector<std::string>* pulse,
                 std::vector<std::string>* full) {
+  const scene::Scene& s = d.full;
+  const scene::PositionLoop x_loop = position_loop(d);
   for (int axis : {3, 4, 0, 1}) {
     for (const char* k : {"kp", "kd"}) {
-      const double v = (k[1] == 'p' ? s.controller.kp : s.controller.kd)[axis];
+      double v = (k[1] == 'p' ? s.controller.kp : s.controller.kd)[axis];
+      if (full_model && axis == 0) v = s.body.mass * (k[1] == 'p' ? x_loop.kp : x_loop.kd);
       if (!(v > 0.0)) continue;
       const std::string name = std::string(k) + "_" + kAxes[axis];
       params->push_back(
@@ -147,7 +159,7 @@ void full_model_settings(const Derived& d, json* params, std::vector<std::string
   }
   add(parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
   add(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8, false,
-                p.position_trim_gain));
+                position_loop(d).trim));
   add(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0, false,
                 p.attitude_trim_gain));
 }
@@ -222,7 +234,7 @@ json derive_design_study(const json& scene_doc, const std::string& scene_file,
   std::vector<std::string> pulse_names = {"pulse_duration"}, full_names;
   params.push_back(
       parameter("pulse_duration", "/pulse/duration", d.stance_lo, d.stance_hi, false, d.stance0));
-  body_gains(d.full, &params, &pulse_names, &full_names);
+  body_gains(d, full_model, &params, &pulse_names, &full_names);
   if (full_model) {
     full_model_settings(d, &params, &full_names);
   } else {

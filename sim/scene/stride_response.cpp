@@ -35,6 +35,30 @@ void pd_channel_gains(std::complex<double> z1, std::complex<double> z2, const St
   *kd = 1.0 - (z1 * z2).real() + 0.5 * *kp * t.stance;
 }
 
+Eigen::Matrix3d position_stride_map(const PositionLoop& l, const StrideTiming& t) {
+  const double T = t.period(), a = T - 0.5 * t.stance;
+  // Rows e', v', I' in the columns e, v, I (the trim is updated before the plan).
+  const Eigen::RowVector3d v_next(-l.kp * (1.0 + l.trim), 1.0 - l.kd, -l.kp);
+  Eigen::Matrix3d m;
+  m.row(0) = Eigen::RowVector3d(1.0, T, 0.0) + a * (v_next - Eigen::RowVector3d(0.0, 1.0, 0.0));
+  m.row(1) = v_next;
+  m.row(2) << l.trim, 0.0, 1.0;
+  return m;
+}
+
+PositionLoop place_position_poles(const std::array<double, 3>& poles, const StrideTiming& t) {
+  const double T = t.period(), a = T - 0.5 * t.stance;
+  const double q1 = poles[0] - 1.0, q2 = poles[1] - 1.0, q3 = poles[2] - 1.0;
+  const double s1 = q1 + q2 + q3, s2 = q1 * q2 + q1 * q3 + q2 * q3, s3 = q1 * q2 * q3;
+  // T kp g = -s3;  T kp (1 + g) + a kp g = s2;  kd + a kp (1 + g) = -s1.
+  const double kp_g = -s3 / T;
+  PositionLoop l;
+  l.kp = (s2 - (T + a) * kp_g) / T;
+  l.trim = kp_g / l.kp;
+  l.kd = -s1 - a * (l.kp + kp_g);
+  return l;
+}
+
 std::array<std::complex<double>, 2> response_poles(double omega, double zeta, double period) {
   const std::complex<double> root = std::sqrt(std::complex<double>(zeta * zeta - 1.0));
   const std::complex<double> s1 = omega * (-zeta + root), s2 = omega * (-zeta - root);

@@ -39,6 +39,22 @@ std::array<std::complex<double>, 2> pd_channel_poles(double kp, double kd, const
 void pd_channel_gains(std::complex<double> z1, std::complex<double> z2, const StrideTiming& t,
                       double* kp, double* kd);
 
+/// One position channel with integral action, as the full model runs it: the PD above on
+/// the position the controller perceives, e + I, where the trim I (a position offset seen)
+/// grows by g e at each touchdown before the plan. State (e, v, I) at touchdown:
+///   I' = I + g e,   v' = (1 - kd) v - kp (e + I'),   e' = e + T v + (T - Ts/2)(v' - v).
+/// Relative gains kp [1/s], kd [-]; g is the trim gain per stride [-].
+struct PositionLoop {
+  double kp = 0.0, kd = 0.0, trim = 0.0;
+};
+Eigen::Matrix3d position_stride_map(const PositionLoop& loop, const StrideTiming& t);
+
+/// The gains whose map above has the three real poles z1..z3 (each in (0, 1)), in closed
+/// form: with q = z - 1 and a = T - Ts/2 the characteristic polynomial in w = z - 1 is
+///   w^3 + (kd + a kp (1 + g)) w^2 + (T kp (1 + g) + a kp g) w + T kp g,
+/// matched to (w - q1)(w - q2)(w - q3).
+PositionLoop place_position_poles(const std::array<double, 3>& poles, const StrideTiming& t);
+
 /// The poles of a continuous response of natural frequency omega [rad/s] and damping
 /// ratio zeta [-] sampled once per stride: z = exp(T s), s = -zeta omega +- omega
 /// sqrt(zeta^2 - 1) (a complex pair below zeta 1, two reals above).

@@ -10,6 +10,8 @@
 #include <complex>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "io/load/scene_loader.hpp"
 #include "sim/reduced/stride_map.hpp"
 #include "sim/scene/robot_scaling.hpp"
@@ -149,4 +151,47 @@ TEST_CASE("the legged robot's default lateral loop has the placed poles in the p
   const scene::Scene f = io::parse_scene(doc, "three_legs.json");
   const double v = std::sqrt(2 * 9.81 * 0.3);
   CHECK(scene::design_stride(f).stance == Approx(2 * 1.5 * v / (180 - 1.5 * 9.81)).epsilon(1e-14));
+}
+
+TEST_CASE("position loop with integral action: placed poles, and the map against a stride",
+          "[scene][gains]") {
+  for (const scene::StrideTiming t : {scene::StrideTiming{0.49, 0.10}, {0.40, 0.14}, {0.30, 0.0}}) {
+    for (const std::array<double, 3>& p :
+         {std::array<double, 3>{0.6, 0.6, 0.6}, {0.3, 0.5, 0.8}, {0.45, 0.55, 0.7}}) {
+      const scene::PositionLoop l = scene::place_position_poles(p, t);
+      CHECK(l.kp > 0.0);
+      CHECK(l.trim > 0.0);
+      // The map's eigenvalues, computed numerically, are the poles asked for.
+      const Eigen::EigenSolver<Eigen::Matrix3d> es(scene::position_stride_map(l, t));
+      std::vector<double> got;
+      for (int i = 0; i < 3; ++i) {
+        // A triple pole splits by ~eps^(1/3) in floating point.
+        CHECK(std::abs(es.eigenvalues()[i].imag()) < 1e-4);
+        got.push_back(es.eigenvalues()[i].real());
+      }
+      std::sort(got.begin(), got.end());
+      std::array<double, 3> want = p;
+      std::sort(want.begin(), want.end());
+      for (int i = 0; i < 3; ++i) CHECK(std::abs(got[i] - want[i]) < 1e-4);
+    }
+  }
+  // The map against one stride of a point mass that tracks a moving setpoint: at touchdown
+  // the trim grows by g e, a constant force over the stance delivers the PD impulse on the
+  // perceived error, then it flies. Exact kinematics, no linearisation.
+  const scene::StrideTiming t{0.45, 0.12};
+  const scene::PositionLoop l = scene::place_position_poles({0.5, 0.6, 0.7}, t);
+  const double m = 2.3, v_d = 0.4, t0 = 1.7;
+  const double x = 0.05 + v_d * t0, v = 0.31, trim = -0.02;  // at touchdown t0
+  const double e = x - v_d * t0;
+  const double trim1 = trim + l.trim * e;
+  const double P = m * (l.kp * (v_d * t0 - (x + trim1)) + l.kd * (v_d - v));
+  const double F = P / t.stance;
+  const double x_to = x + v * t.stance + 0.5 * F / m * t.stance * t.stance;
+  const double v1 = v + F / m * t.stance;
+  const double x1 = x_to + v1 * t.flight;
+  const double t1 = t0 + t.period();
+  const Eigen::Vector3d next = scene::position_stride_map(l, t) * Eigen::Vector3d(e, v - v_d, trim);
+  CHECK(next(0) == Approx(x1 - v_d * t1).margin(1e-12));
+  CHECK(next(1) == Approx(v1 - v_d).margin(1e-12));
+  CHECK(next(2) == Approx(trim1).margin(1e-12));
 }
