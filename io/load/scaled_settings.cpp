@@ -69,8 +69,9 @@ void resolve_full_model(const GivenSettings& given, scene::Scene* s) {
   }
   if (!given.stance_attitude || given.stance) {
     RelativeStanceGains rel;
+    const Eigen::Vector2d kp = scene::default_stance_kp_per_inertia(*s);
     for (int k = 0; k < 2; ++k) {
-      rel.kp[k] = scene::kStanceKpPerInertia[k];
+      rel.kp[k] = kp[k];
       rel.kd[k] = scene::kStanceKdPerInertia[k];
     }
     if (given.stance) rel = *given.stance;

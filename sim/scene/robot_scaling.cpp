@@ -87,6 +87,14 @@ double leg_stiffness_for_stance(const Scene& s, double stance_time) {
   return s.body.mass * M_PI * M_PI / (n * stance_time * stance_time);
 }
 
+Eigen::Vector2d default_stance_kp_per_inertia(const Scene& s) {
+  Eigen::Vector2d kp(kStanceKpPerInertia[0], kStanceKpPerInertia[1]);
+  const Vec3& v = s.controller.setpoint_velocity;
+  const double speed = std::hypot(v.x(), v.y());
+  if (speed > 0.0) kp[0] = std::max(kp[0], kp[1] * std::abs(v.y()) / speed);
+  return kp;
+}
+
 double default_stance_max_moment(const Scene& s) {
   double r = 0.0;
   for (const Vec3& h : s.legs.hips) r = std::max(r, std::hypot(h.x(), h.y()));

@@ -74,6 +74,14 @@ double leg_stiffness_for_stance(const Scene& s, double stance_time);
 constexpr double kStanceKpPerInertia[2] = {0.0, 1400.0};
 constexpr double kStanceKdPerInertia[2] = {800.0, 570.0};
 
+/// The stance kp per unit inertia a scene gets by default (roll, pitch) [1/s^2]: study 3's,
+/// except that a robot with a sideways setpoint velocity holds its roll as it holds its
+/// pitch, in the share of the speed that is sideways: kp_roll = kp_pitch |v_y| / |v|. The
+/// thrust at the bottom of the stance makes a steady moment about the axis across the
+/// travel, which the attitude trim can only hold against a stance stiffness (the sidestepping
+/// quadruped, 0.15 of 0.34 m/s sideways, held -5 deg of roll with its trim at its limit).
+Eigen::Vector2d default_stance_kp_per_inertia(const Scene& s);
+
 /// Default limit of each stance moment: the body's weight over its farthest hip,
 /// m g max_i |(r_x, r_y)_i| [N m] (pr_running: 2.7 N m; its scene sets 3).
 double default_stance_max_moment(const Scene& s);

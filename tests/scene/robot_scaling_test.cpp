@@ -149,6 +149,15 @@ TEST_CASE("the full model's settings scale with the robot", "[scene][pseudo_rigi
   CHECK(p.stance_kp[1] == scene::kStanceKpPerInertia[1] * 0.009);
   CHECK(p.stance_kd[0] == scene::kStanceKdPerInertia[0] * 0.006);
   CHECK(p.stance_max_moment == Approx(1.5 * 9.81 * std::hypot(0.08, 0.13)).epsilon(1e-14));
+  // Running straight (or in place), no roll stiffness; sideways, roll held as pitch is, in the
+  // sideways share of the speed: (0.3, 0.4) m/s is 0.8 sideways.
+  CHECK(p.stance_kp[0] == 0.0);
+  json sideways = doc;
+  sideways["controller"]["setpoint"] = {{"velocity", {0.3, 0.4, 0.0}}};
+  const scene::Scene ss = io::parse_scene(sideways, "robot.json");
+  CHECK(ss.pseudo_rigid.stance_kp[0] ==
+        Approx(scene::kStanceKpPerInertia[1] * 0.8 * 0.006).epsilon(1e-14));
+  CHECK(ss.pseudo_rigid.stance_kp[1] == p.stance_kp[1]);
   // 1 g feet (m / 1500), critically damped on 1e5 N/m: pr_running's 20 N s/m.
   CHECK(p.foot_mass == 1.5 / 1500);
   CHECK(p.contact_damping == Approx(20.0).epsilon(1e-14));
