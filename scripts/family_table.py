@@ -33,7 +33,7 @@ def main() -> None:
           "offset <= 0.2 m, kick <= 0.2 m/s) and the robot perturbed (mass +-15 %, inertia "
           "+-20 %, leg stiffness +-15 %, friction 0.6-1.2).\n")
     print("| robot | body, legs, gait | trials | stabilized | fell | apex held (3 %) "
-          "| hop-height error (RMS) | duty | cost of transport | wall time |")
+          "| hop-height error (RMS; a fall counts its penalty, 1-2 m) | duty | cost of transport | wall time |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for d in dirs:
         print(row(d))
