@@ -138,6 +138,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   given->foot_mass = r.has("foot_mass");
   p.foot_mass = r.number_or("foot_mass", p.foot_mass, 1e-6, 1e3);
   parse_leg_stiffness(r, node, &p, given);
+  given->leg_damping = r.has("leg_damping");
   p.leg_damping = r.number_or("leg_damping", p.leg_damping, 0.0, 1e9);
   p.actuator_max_force = r.number_or("actuator_max_force", p.actuator_max_force, 0.0, 1e9);
   p.actuator_gain = r.number_or("actuator_gain", p.actuator_gain, 1e-3, 10.0);
@@ -157,6 +158,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   p.level_feet = r.boolean_or("level_feet", p.level_feet);
   p.hop_trim_gain = r.number_or("hop_trim_gain", p.hop_trim_gain, 0.0, 2.0);
   p.hop_trim_max = r.number_or("hop_trim_max", p.hop_trim_max, 0.0, 10.0);
+  given->position_trim_gain = r.has("position_trim_gain");
   p.position_trim_gain = r.number_or("position_trim_gain", p.position_trim_gain, 0.0, 2.0);
   p.attitude_trim_gain = r.number_or("attitude_trim_gain", p.attitude_trim_gain, 0.0, 2.0);
   p.placement_trim_gain = r.number_or("placement_trim_gain", p.placement_trim_gain, 0.0, 2.0);

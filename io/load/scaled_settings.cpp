@@ -59,6 +59,20 @@ void resolve_controller(const GivenSettings& given, const std::string& file, sce
   if (!given.bank_kd) c.bank_kd = loop.bank_kd;
 }
 
+// A legged robot in the full model runs its fore-aft position loop with the position trim
+// (integral action): where the scene gives neither the gains nor the trim, that loop's three
+// poles are placed at kPositionPoles on the design stride (the pulse model's PD defaults
+// left the tripod and the hexapod falling behind or running ahead within 7 s).
+void full_model_position_loop(const GivenSettings& given, scene::Scene* s) {
+  if (s->model != scene::ModelKind::kPseudoRigid || s->legs.body_only) return;
+  if (given.gains || given.kp || given.kd || given.position_trim_gain) return;
+  const scene::PositionLoop l =
+      scene::place_position_poles(scene::kPositionPoles, scene::design_stride(*s));
+  s->controller.kp[0] = l.kp * s->body.mass;
+  s->controller.kd[0] = l.kd * s->body.mass;
+  s->pseudo_rigid.position_trim_gain = l.trim;
+}
+
 // The full model's leg stiffness, stance attitude feedback, feet and their contact damping.
 void resolve_full_model(const GivenSettings& given, scene::Scene* s) {
   scene::PseudoRigid& p = s->pseudo_rigid;
@@ -81,6 +95,8 @@ void resolve_full_model(const GivenSettings& given, scene::Scene* s) {
     }
     if (!given.stance_attitude) p.stance_max_moment = scene::default_stance_max_moment(*s);
   }
+  if (!given.leg_damping && !s->legs.body_only) p.leg_damping = scene::default_leg_damping(*s);
+  full_model_position_loop(given, s);
   if (!given.foot_mass) p.foot_mass = scene::default_foot_mass(s->body);
   if (!given.contact_damping) p.contact_damping = scene::default_contact_damping(p);
 }

@@ -31,6 +31,8 @@ struct GivenSettings {
   std::optional<RelativeStanceGains> stance;  ///< {"stance_attitude": {"gains"}}
   bool contact_damping = false;               ///< "pseudo_rigid": "contact_damping"
   bool foot_mass = false;                     ///< "pseudo_rigid": "foot_mass"
+  bool leg_damping = false;                   ///< "pseudo_rigid": "leg_damping"
+  bool position_trim_gain = false;            ///< "pseudo_rigid": "position_trim_gain"
 };
 
 /// Refuses an object (the controller, the stance attitude feedback) that gives both absolute

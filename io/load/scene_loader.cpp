@@ -14,6 +14,7 @@
 #include "io/load/robot_settings.hpp"
 #include "io/load/scaled_settings.hpp"
 #include "sim/reduced/run_limits.hpp"
+#include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::io {
 
@@ -385,6 +386,16 @@ void parse_scene_header(JsonReader& r, scene::Scene* s) {
                                     : scene::AttitudeFormulation::kSmallAngleEuler123;
 }
 
+// A legged scene without "initial" starts as a running design does: at the apex of its hop
+// above the setpoint, level, moving at the setpoint velocity (a robot started at rest below
+// its hop, behind a moving setpoint, spends its run catching up, or never hops).
+void default_running_start(scene::Scene* s) {
+  const scene::Vec3& p = s->controller.setpoint_position;
+  const scene::Vec3& v = s->controller.setpoint_velocity;
+  s->initial.position = scene::Vec3(p.x(), p.y(), s->legs.length + s->controller.hop_height);
+  s->initial.velocity = scene::Vec3(v.x(), v.y(), 0.0);
+}
+
 }  // namespace
 
 scene::Scene parse_scene(const json& doc, const std::string& file) {
@@ -405,18 +416,25 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     parse_scene_controller(r.object("controller"), s.legs, &s.controller, &given);
   else
     r.optional("controller");
-  if (r.has("pulse"))
+  if (r.has("pulse")) {
     parse_scene_pulse(r.object("pulse"), &s.pulse);
-  else
+  } else {
     r.optional("pulse");
+    if (!s.legs.body_only) {
+      s.pulse.mode = scene::PulseMode::kDuration;
+      s.pulse.duration = scene::default_pulse_duration(s);
+    }
+  }
   if (r.has("pseudo_rigid"))
     parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid, &given);
   else
     r.optional("pseudo_rigid");
-  if (r.has("initial"))
+  if (r.has("initial")) {
     parse_scene_initial(r.object("initial"), &s.initial);
-  else
+  } else {
     r.optional("initial");
+    if (!s.legs.body_only) default_running_start(&s);
+  }
   if (r.has("disturbances"))
     s.disturbances = parse_scene_disturbances(r.object_array("disturbances"));
   else

@@ -82,6 +82,22 @@ constexpr double kStanceKdPerInertia[2] = {800.0, 570.0};
 /// quadruped, 0.15 of 0.34 m/s sideways, held -5 deg of roll with its trim at its limit).
 Eigen::Vector2d default_stance_kp_per_inertia(const Scene& s);
 
+/// The duty a legged scene without a "pulse" runs at: pulses of the stance time
+/// Ts = d Tf / (1 - d) on the hop's flight Tf, d = 0.2. In the full model the spring legs then
+/// follow that stance; each family robot started level on these defaults completes its
+/// 10 s, while the 60 N max-force pulses (6-45 ms stances) make the 0.5 kg quadruped fall in
+/// its first stance.
+constexpr double kDefaultDuty = 0.2;
+
+/// The pulse duration of kDefaultDuty on the scene's hop (impulse flight) [s].
+double default_pulse_duration(const Scene& s);
+
+/// The leg damping a full-model scene gets when it gives none: a damping ratio of 0.2 on
+/// each leg's share of the body on its stance spring, 0.2 * 2 sqrt(k m / n) [N s/m].
+/// Undamped legs make the tripod fall within 3 s.
+constexpr double kDefaultLegDampingRatio = 0.2;
+double default_leg_damping(const Scene& s);
+
 /// Default limit of each stance moment: the body's weight over its farthest hip,
 /// m g max_i |(r_x, r_y)_i| [N m] (pr_running: 2.7 N m; its scene sets 3).
 double default_stance_max_moment(const Scene& s);

@@ -31,7 +31,7 @@ json ss_study() {
     "parameters": [
       {"name": "T", "pointer": "/pulse/duration", "lower": 0.03, "upper": 0.09, "initial": 0.04},
       {"name": "k", "pointer": "/pseudo_rigid/leg_stiffness", "lower": 300, "upper": 6000, "log": true},
-      {"name": "c", "pointer": "/pseudo_rigid/leg_damping", "lower": 0, "upper": 5}
+      {"name": "c", "pointer": "/pseudo_rigid/leg_damping", "lower": 0, "upper": 5, "initial": 0}
     ],
     "scenarios": {"duration": 0.8, "list": [{"name": "tilted", "tilt_deg": [4, 0, 0]}]},
     "objective": [{"metric": "hop_height_error"}],

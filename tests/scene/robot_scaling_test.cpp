@@ -141,7 +141,13 @@ TEST_CASE("the full model's settings scale with the robot", "[scene][pseudo_rigi
   CHECK(p.level_feet);
   CHECK(p.friction == 1.0);
   CHECK(p.hop_trim_gain == 0.5);
-  CHECK(p.position_trim_gain == 0.3);
+  // The fore-aft position loop with its trim: the three poles of its stride map at 0.6.
+  const Eigen::EigenSolver<Eigen::Matrix3d> es(scene::position_stride_map(
+      {s.controller.kp[0] / 1.5, s.controller.kd[0] / 1.5, p.position_trim_gain},
+      scene::design_stride(s)));
+  for (int i = 0; i < 3; ++i) CHECK(std::abs(es.eigenvalues()[i] - 0.6) < 1e-4);
+  // Legs damped at a ratio 0.2 of their stance spring: 0.2 * 2 sqrt(k m / n).
+  CHECK(p.leg_damping == Approx(0.4 * std::sqrt(p.leg_stiffness * 1.5 / 3)).epsilon(1e-14));
   CHECK(p.attitude_trim_gain == 1.0);
   // Leg springs whose stance half-period pi sqrt(m / (n k)) is the 50 ms pulse.
   CHECK(M_PI * std::sqrt(1.5 / (3 * p.leg_stiffness)) == Approx(0.05).epsilon(1e-14));

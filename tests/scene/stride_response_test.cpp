@@ -147,7 +147,7 @@ TEST_CASE("the legged robot's default lateral loop has the placed poles in the p
     CHECK(nearest < 1e-5);
   }
   // In max-force mode the stance is the time 3 legs of 60 N take: Ts = 2 m v / (3 F - m g).
-  doc.erase("pulse");
+  doc["pulse"] = {{"mode", "max_force"}};
   const scene::Scene f = io::parse_scene(doc, "three_legs.json");
   const double v = std::sqrt(2 * 9.81 * 0.3);
   CHECK(scene::design_stride(f).stance == Approx(2 * 1.5 * v / (180 - 1.5 * 9.81)).epsilon(1e-14));
