@@ -66,8 +66,7 @@ void resolve_controller(const GivenSettings& given, const std::string& file, sce
 void full_model_position_loop(const GivenSettings& given, scene::Scene* s) {
   if (s->model != scene::ModelKind::kPseudoRigid || s->legs.body_only) return;
   if (given.gains || given.kp || given.kd || given.position_trim_gain) return;
-  const scene::PositionLoop l =
-      scene::place_position_poles(scene::kPositionPoles, scene::design_stride(*s));
+  const scene::PositionLoop l = scene::default_position_loop(*s);
   s->controller.kp[0] = l.kp * s->body.mass;
   s->controller.kd[0] = l.kd * s->body.mass;
   s->pseudo_rigid.position_trim_gain = l.trim;

@@ -35,9 +35,6 @@ void check_legged(const json& doc, const scene::Scene& s, const std::string& fil
                        kind ? io::describe(*kind) : "no legs (a body-only scene)");
 }
 
-// The stance time of duty d on the robot's flight: d = Ts / (Ts + Tf).
-double stance_for_duty(double duty, double flight) { return duty * flight / (1.0 - duty); }
-
 struct Derived {
   std::vector<std::string> overrides;  ///< the study's scene_overrides
   double stance_lo = 0.0, stance_hi = 0.0, stance0 = 0.0;
@@ -50,9 +47,9 @@ Derived derive_overrides(const json& doc, const std::string& file, const scene::
                          const DesignOptions& o) {
   Derived d;
   const double flight = scene::hop_flight_time(s.gravity, s.controller.hop_height, 0.0, false);
-  d.stance_lo = stance_for_duty(o.duty_lo, flight);
-  d.stance_hi = stance_for_duty(o.duty_hi, flight);
-  d.stance0 = stance_for_duty(o.duty, flight);
+  d.stance_lo = scene::stance_for_duty(o.duty_lo, flight);
+  d.stance_hi = scene::stance_for_duty(o.duty_hi, flight);
+  d.stance0 = scene::stance_for_duty(o.duty, flight);
   if (doc.contains("pulse")) {
     d.overrides.push_back("/pulse/mode=\"duration\"");
     d.overrides.push_back("/pulse/duration=" + number(d.stance0));
@@ -89,21 +86,13 @@ json gain(const std::string& name, const std::string& pointer, double value) {
 
 const char* kAxes[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
-// The full model's fore-aft position loop (x PD and position trim) with its poles at
-// kPositionPoles on the design's stride (flight from the hop height, the duty's stance).
-scene::PositionLoop position_loop(const Derived& d) {
-  const scene::Scene& s = d.full;
-  const double flight = scene::hop_flight_time(s.gravity, s.controller.hop_height, 0.0, false);
-  return scene::place_position_poles(scene::kPositionPoles, {flight, d.stance0});
-}
-
 // The body controller's gains the pulse stage tunes (attitude) and the full stage retunes
 // with the position gains and banking. In the full model the x gains start from the
 // placed position loop (per unit mass).
 void body_gains(const Derived& d, bool full_model, json* params, std::vector<std::string>* pulse,
                 std::vector<std::string>* full) {
-  const scene::Scene& s = d.full;
-  const scene::PositionLoop x_loop = position_loop(d);
+  const scene::Scene& s = d.full;  // its pulse: the duty's stance, so its design stride
+  const scene::PositionLoop x_loop = scene::default_position_loop(s);
   for (int axis : {3, 4, 0, 1}) {
     for (const char* k : {"kp", "kd"}) {
       double v = (k[1] == 'p' ? s.controller.kp : s.controller.kd)[axis];
@@ -159,7 +148,7 @@ void full_model_settings(const Derived& d, json* params, std::vector<std::string
   }
   add(parameter("hop_trim_gain", "/pseudo_rigid/hop_trim_gain", 0.0, 1.0, false, p.hop_trim_gain));
   add(parameter("position_trim_gain", "/pseudo_rigid/position_trim_gain", 0.0, 0.8, false,
-                position_loop(d).trim));
+                scene::default_position_loop(s).trim));
   add(parameter("attitude_trim_gain", "/pseudo_rigid/attitude_trim_gain", 0.0, 2.0, false,
                 p.attitude_trim_gain));
 }

@@ -87,15 +87,20 @@ double leg_stiffness_for_stance(const Scene& s, double stance_time) {
   return s.body.mass * M_PI * M_PI / (n * stance_time * stance_time);
 }
 
+double stance_for_duty(double duty, double flight) { return duty * flight / (1.0 - duty); }
+
 double default_pulse_duration(const Scene& s) {
-  const double flight = hop_flight_time(s.gravity, s.controller.hop_height, 0.0, false);
-  return kDefaultDuty * flight / (1.0 - kDefaultDuty);
+  return stance_for_duty(kDefaultDuty,
+                         hop_flight_time(s.gravity, s.controller.hop_height, 0.0, false));
 }
 
 double default_leg_damping(const Scene& s) {
   const double n = static_cast<double>(std::max<size_t>(s.legs.hips.size(), 1));
-  return kDefaultLegDampingRatio * 2.0 *
-         std::sqrt(s.pseudo_rigid.leg_stiffness * s.body.mass / n);
+  return kDefaultLegDampingRatio * 2.0 * std::sqrt(s.pseudo_rigid.leg_stiffness * s.body.mass / n);
+}
+
+PositionLoop default_position_loop(const Scene& s) {
+  return place_position_poles(kPositionPoles, design_stride(s));
 }
 
 Eigen::Vector2d default_stance_kp_per_inertia(const Scene& s) {

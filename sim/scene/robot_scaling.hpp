@@ -60,6 +60,10 @@ constexpr std::array<double, 4> kLateralPoles = {0.4, 0.5, 0.6, 0.7};
 /// 0.80 +- 0.32i) stabilized 5 of 32 held-out trials, this one 22, poles at 0.5 21 with a fall.
 constexpr std::array<double, 3> kPositionPoles = {0.6, 0.6, 0.6};
 
+/// The full model's fore-aft position loop placed at kPositionPoles on the scene's design
+/// stride (relative gains kp, kd per unit mass and the position trim gain).
+PositionLoop default_position_loop(const Scene& s);
+
 /// The default lateral loop of a legged scene: kLateralPoles placed on its design stride.
 LateralLoop default_lateral_loop(const Scene& s);
 
@@ -88,6 +92,9 @@ Eigen::Vector2d default_stance_kp_per_inertia(const Scene& s);
 /// 10 s, while the 60 N max-force pulses (6-45 ms stances) make the 0.5 kg quadruped fall in
 /// its first stance.
 constexpr double kDefaultDuty = 0.2;
+
+/// The stance time of duty d on a flight Tf: d = Ts / (Ts + Tf), Ts = d Tf / (1 - d) [s].
+double stance_for_duty(double duty, double flight);
 
 /// The pulse duration of kDefaultDuty on the scene's hop (impulse flight) [s].
 double default_pulse_duration(const Scene& s);

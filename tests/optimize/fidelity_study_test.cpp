@@ -164,7 +164,8 @@ TEST_CASE("parameters bind to numbers the model uses, and nothing else", "[optim
   d["parameters"][0]["upper"] = 20.0;
   d["parameters"][0]["log"] = false;
   const Study st = fid_parse(d);
-  CHECK(st.evaluator.parameters[0].initial == Approx(0.4 * std::sqrt(400 * 1.5 / 4)).epsilon(1e-14));
+  CHECK(st.evaluator.parameters[0].initial ==
+        Approx(0.4 * std::sqrt(400 * 1.5 / 4)).epsilon(1e-14));
   // A full-model metric in a reduced-model study.
   d = fid_spring_hop_study("/pulse/duration");
   d["parameters"][0] = {

@@ -114,9 +114,9 @@ TEST_CASE("the shipped robots' bare scenes run on the full model's defaults",
   const struct {
     const char* file;
     bool settles;
-  } kScenes[] = {{"family/mini_quad.json", true},   {"family/pentapod.json", true},
-                 {"family/hexapod.json", false},    {"pr_running_robot.json", true},
-                 {"family/tripod.json", false},     {"family/sidestep_quad.json", false}};
+  } kScenes[] = {{"family/mini_quad.json", true}, {"family/pentapod.json", true},
+                 {"family/hexapod.json", false},  {"pr_running_robot.json", true},
+                 {"family/tripod.json", false},   {"family/sidestep_quad.json", false}};
   for (const auto& c : kScenes) {
     INFO(c.file);
     json doc = io::read_json_file(dir + c.file);
