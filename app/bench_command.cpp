@@ -18,6 +18,7 @@
 #include "io/load/input_error.hpp"
 #include "io/write/atomic_file.hpp"
 #include "optimize/progress.hpp"
+#include "sim/run/count_text.hpp"
 
 #ifndef PRONK_STUDIES_DIR
 #define PRONK_STUDIES_DIR "studies"
@@ -198,8 +199,8 @@ void print_bench_summary(const bench::BenchConfig& c, const json& doc,
   std::printf("pronk bench%s: %.1f s on %s\n", c.quick ? " --quick" : "",
               doc["total_wall_s"].get<double>(), doc["machine"].get<std::string>().c_str());
   std::printf("%s\n", h.dump(2).c_str());
-  std::printf("fidelity ladder, robustness (%ld trials of %g s per duty, map_seed_duty row 0):\n",
-              robustness.trials, robustness.trial_duration);
+  std::printf("fidelity ladder, robustness (%s of %g s per duty, map_seed_duty row 0):\n",
+              run::count_text(robustness.trials, "trial").c_str(), robustness.trial_duration);
   for (const auto& r : robustness.rungs) {
     if (!r.available) {
       std::printf("  %-12s %s\n", r.model.c_str(), r.note.c_str());

@@ -17,6 +17,7 @@
 #include "optimize/map/map_runner.hpp"
 #include "optimize/map/map_study.hpp"
 #include "optimize/map/mpi_runner.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::app {
 
@@ -53,16 +54,17 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
     return 0;
   }
   std::printf(
-      "%s: %ld cells x %ld trials (%ld computed, %ld from the journal%s), %.1f s on %s\n",
-      st.name.c_str(), o.cells, st.trials.count, o.cells_computed, o.cells_replayed,
-      o.verified > 0 ? (", " + std::to_string(o.verified) + " records verified").c_str() : "",
+      "%s: %s x %s (%ld computed, %ld from the journal%s), %.1f s on %s\n", st.name.c_str(),
+      run::count_text(o.cells, "cell").c_str(), run::count_text(st.trials.count, "trial").c_str(),
+      o.cells_computed, o.cells_replayed,
+      o.verified > 0 ? (", " + run::count_text(o.verified, "record") + " verified").c_str() : "",
       o.wall_time, workers.c_str());
   const auto& d = o.summary["disagreement"];
   if (st.models.size() > 1) {
-    std::printf("  disagreements %s vs %s: %ld trials; %s\n",
+    std::printf("  disagreements %s vs %s: %s; %s\n",
                 std::string(scene::to_string(st.models[0])).c_str(),
                 std::string(scene::to_string(st.models[1])).c_str(),
-                o.summary["totals"]["disagreements"].get<long>(),
+                run::count_text(o.summary["totals"]["disagreements"].get<long>(), "trial").c_str(),
                 disagreement_sentence(d, st.axes[0].name).c_str());
   }
   for (const auto& b : o.boundaries) {

@@ -23,6 +23,7 @@
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::app {
 
@@ -140,9 +141,9 @@ int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize:
   if (!args.quiet) {
     const std::string workers = farm ? farm->describe() : threads_text(opt.threads);
     std::printf("%s: %s\n", study.name.c_str(), o.result.brief_report().c_str());
-    std::printf("  cost %.6g -> %.6g (%s), %ld evaluations (%ld replayed%s), %.1f s, %s\n",
-                o.initial.cost, o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",
-                o.result.evaluations, o.replayed,
+    std::printf("  cost %.6g -> %.6g (%s), %s (%ld replayed%s), %.1f s, %s\n", o.initial.cost,
+                o.best.cost, o.result.best_feasible ? "feasible" : "INFEASIBLE",
+                run::count_text(o.result.evaluations, "evaluation").c_str(), o.replayed,
                 args.verify.sample >= 0
                     ? (", " + std::to_string(o.verified) + " of them verified").c_str()
                     : "",

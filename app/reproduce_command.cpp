@@ -6,9 +6,10 @@
 #include <optional>
 
 #include "app/optimize_command.hpp"
-#include "optimize/reproduce.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/reproduce.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::app {
 
@@ -44,14 +45,15 @@ void print_decisions(const optimize::ReproduceReport& rep) {
     return;
   }
   if (rep.decision_differences.empty()) {
-    std::printf("(a) decisions of %ld trials: identical\n", rep.trials_compared);
+    std::printf("(a) decisions of %s: identical\n",
+                run::count_text(rep.trials_compared, "trial").c_str());
     return;
   }
   const long fragile = static_cast<long>(rep.decision_differences.size()) - rep.decision_mismatches;
-  std::printf("(a) decisions of %ld trials: %ld differ%s\n", rep.trials_compared,
-              rep.decision_mismatches,
-              fragile > 0 ? (", and " + std::to_string(fragile) +
-                             " fragile trials (not required: the recording's perturbation run "
+  std::printf("(a) decisions of %s: %ld differ%s\n",
+              run::count_text(rep.trials_compared, "trial").c_str(), rep.decision_mismatches,
+              fragile > 0 ? (", and " + run::count_text(fragile, "fragile trial") +
+                             " (not required: the recording's perturbation run "
                              "changed them too)")
                                 .c_str()
                           : "");

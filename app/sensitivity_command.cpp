@@ -12,6 +12,7 @@
 #include "optimize/mpi/evaluation_farm.hpp"
 #include "optimize/sensitivity/design_sensitivity.hpp"
 #include "optimize/sensitivity/sensitivity_output.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::app {
 
@@ -95,10 +96,12 @@ int run_loaded(const SensitivityArgs& args, const nlohmann::json& design, optimi
   sens::write_sensitivity(s, out, args.chart);
   if (!args.quiet) {
     std::printf(
-        "sensitivity of %s (%s model, %s: %ld trials): %zu inputs, %zu outputs, %ld "
-        "evaluations (%.1f s local, %.1f s Sobol)%s\n",
-        s.study.c_str(), s.model.c_str(), s.set.c_str(), s.scenarios, s.inputs.size(),
-        s.outputs.size(), s.evaluations, s.local_seconds, s.sobol_seconds,
+        "sensitivity of %s (%s model, %s: %s): %s, %s, %s (%.1f s local, %.1f s Sobol)%s\n",
+        s.study.c_str(), s.model.c_str(), s.set.c_str(),
+        run::count_text(s.scenarios, "trial").c_str(),
+        run::count_text(static_cast<long>(s.inputs.size()), "input").c_str(),
+        run::count_text(static_cast<long>(s.outputs.size()), "output").c_str(),
+        run::count_text(s.evaluations, "evaluation").c_str(), s.local_seconds, s.sobol_seconds,
         s.failed > 0 ? (", " + std::to_string(s.failed) + " made no valid scene").c_str() : "");
     std::printf("  %-22s %12s %12s %12s %12s\n", "input", "value", "range", "elasticity",
                 s.sobol ? "ST" : "");

@@ -14,6 +14,7 @@
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/setpoint_check.hpp"
+#include "sim/run/count_text.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::app {
@@ -114,9 +115,10 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
                 c.lu_factorizations, r.run.cost.wall_time * 1e3);
   } else {
-    std::printf("  cost: %ld steps (%ld rejected), %ld RHS evaluations, %ld events, %.3f ms\n",
-                c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.events,
-                r.run.cost.wall_time * 1e3);
+    std::printf("  cost: %s (%ld rejected), %s, %s, %.3f ms\n",
+                run::count_text(c.steps_accepted, "step").c_str(), c.steps_rejected,
+                run::count_text(c.rhs_evaluations, "RHS evaluation").c_str(),
+                run::count_text(c.events, "event").c_str(), r.run.cost.wall_time * 1e3);
   }
   for (const auto& [id, count] : r.run.warnings) {
     if (id == "far_from_setpoint" || id == "never_settled") continue;  // printed below

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "io/load/input_error.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::app {
 
@@ -28,8 +29,9 @@ std::uint64_t verify_seed(const VerifyArgs& args, bool resume, bool quiet) {
   const std::uint64_t seed =
       (static_cast<std::uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
   if (!quiet)
-    std::fprintf(stderr, "pronk: verifying %ld journal records drawn with --verify-seed %llu\n",
-                 args.sample, static_cast<unsigned long long>(seed));
+    std::fprintf(stderr, "pronk: verifying %s drawn with --verify-seed %llu\n",
+                 run::count_text(args.sample, "journal record").c_str(),
+                 static_cast<unsigned long long>(seed));
   return seed;
 }
 

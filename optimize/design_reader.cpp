@@ -13,6 +13,7 @@
 #include "io/write/table.hpp"
 #include "optimize/design_reader_detail.hpp"
 #include "optimize/parameters.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::optimize {
 
@@ -114,7 +115,7 @@ std::vector<TrialDecision> read_trials(const json& node, const std::string& path
                                        const MetricMap& metrics) {
   const size_t n = set.scenarios.size();
   if (!node.is_array() || node.size() != n) {
-    throw io::InputError(path, at, "an array of " + std::to_string(n) + " trials",
+    throw io::InputError(path, at, "an array of " + run::count_text(static_cast<long>(n), "trial"),
                          io::describe(node));
   }
   std::vector<TrialDecision> out;

@@ -23,6 +23,7 @@
 #include "optimize/output_lock.hpp"
 #include "optimize/reproduction_record.hpp"
 #include "optimize/study_history.hpp"
+#include "sim/run/count_text.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
@@ -421,10 +422,11 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   std::optional<Evaluator> val;
   if (st.validation) {
     const double v0 = now_s();
-    progress_note(opt.progress, "  " + st.name + ": validating on " +
-                                    std::to_string(st.validation->scenarios.size()) +
-                                    " held-out trials (initial and tuned design), " +
-                                    format_duration(now_s() - t0) + " elapsed");
+    progress_note(
+        opt.progress,
+        "  " + st.name + ": validating on " +
+            run::count_text(static_cast<long>(st.validation->scenarios.size()), "held-out trial") +
+            " (initial and tuned design), " + format_duration(now_s() - t0) + " elapsed");
     val.emplace(validation_evaluator(st, opt.threads, opt.farm));
     o.validated = true;
     o.validation_initial = val->evaluate_full(o.initial.unit);

@@ -10,6 +10,7 @@
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/write/table.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::optimize::map {
 
@@ -67,7 +68,8 @@ void check_cell(const MapStudy& st, const CellResult& c, const MapJournalState& 
   for (size_t m = 0; m < c.trials.size(); ++m) {
     const std::string at = " /trials/" + std::to_string(m);
     if (static_cast<long>(c.trials[m].size()) != st.trials.count) {
-      refuse(path, line, at, std::to_string(st.trials.count) + " trials (the study's trial count)",
+      refuse(path, line, at,
+             run::count_text(st.trials.count, "trial") + " (the study's trial count)",
              std::to_string(c.trials[m].size()));
     }
     for (size_t t = 0; t < c.trials[m].size(); ++t) {

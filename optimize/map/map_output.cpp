@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "io/build_info.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::optimize::map {
 
@@ -289,13 +290,13 @@ std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& c
   if (disagreement) {
     o << "set title "
       << gp_quote("Disagreement " + model_name(st.models.front()) + " vs " + primary +
-                  ": fraction of " + std::to_string(st.trials.count) +
-                  " trials stabilized by exactly one model")
+                  ": fraction of " + run::count_text(st.trials.count, "trial") +
+                  " stabilized by exactly one model")
       << " noenhanced\n";
     o << "set palette defined (0 '#ffffff', 0.25 '#fdd49e', 0.5 '#fc8d59', 1 '#b30000')\n";
   } else {
     o << "set title "
-      << gp_quote("Fraction of " + std::to_string(st.trials.count) + " trials stabilized (" +
+      << gp_quote("Fraction of " + run::count_text(st.trials.count, "trial") + " stabilized (" +
                   primary + " model)")
       << " noenhanced\n";
     o << "set palette defined (0 '#b2182b', 0.5 '#f7f7f7', 1 '#2166ac')\n";

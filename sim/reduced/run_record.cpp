@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sim/run/count_text.hpp"
 #include "sim/run/hybrid_run.hpp"
 
 namespace pronk::reduced {
@@ -58,7 +59,7 @@ void finish_run(RunResult& r, double t, const control::BodyState& s, long touchd
   r.final_attitude = s.attitude;
   if (r.status == RunStatus::kCompleted) {
     r.reason = touchdowns >= sim.max_strides && t < sim.duration
-                   ? "reached " + std::to_string(sim.max_strides) + " strides"
+                   ? "reached " + run::count_text(sim.max_strides, "stride")
                    : "reached t = " + run::fmt(t) + " s";
   }
 }

@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "sim/math/rotation.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::reduced {
 
@@ -97,7 +98,7 @@ StrideFitResult fit_stride_map(const scene::Scene& scene,
   }
   res.pairs = static_cast<long>(xs.size());
   if (res.pairs < 2 * (n + 1)) {
-    res.reason = "too few strides to fit: " + std::to_string(res.pairs) + " pairs (need " +
+    res.reason = "too few strides to fit: " + run::count_text(res.pairs, "pair") + " (need " +
                  std::to_string(2 * (n + 1)) + ")";
     return res;
   }

@@ -51,6 +51,11 @@ export function el(tag, attrs = {}, ...children) {
   return e;
 }
 
+/// "1 trial", "2 trials": a count and its noun for page text.
+export function countText(n, singular, plural = singular + 's') {
+  return `${n} ${n === 1 ? singular : plural}`;
+}
+
 export function fmt(v, digits = 4) {
   if (v === null || v === undefined) return '–';
   if (typeof v !== 'number') return String(v);

@@ -2,7 +2,7 @@
 // its draw hook) with the bisected boundary, hover details per cell, and a click on a
 // cell that plays its stored trial (playback.json: trial 0 of the primary model).
 import uPlot from 'uplot';
-import { el, fmt, columns, ramp, htmlTable } from './data.js';
+import { el, fmt, columns, ramp, htmlTable, countText } from './data.js';
 import { runScene, installTestHook } from './runscene.js';
 import { widthOf } from './plots.js';
 import { Player } from './player.js';
@@ -42,7 +42,7 @@ export function mapReport(box, D) {
   const ncol = a0.values.length, nrow = a1 ? a1.values.length : 1;
   // cells.csv: stabilized_<model> is the fraction of the cell's trials that stabilized.
   const frac = c['stabilized_' + primary];
-  box.append(el('p', { class: 'sub', text: `${ncol * nrow} cells × ${s.trials_per_cell} trials, models ${models.join(', ')} (primary ${primary}); colour: fraction of trials stabilized in the primary model; black line: the bisected boundary; hover a cell for details, click it to play its trial 0.` }));
+  box.append(el('p', { class: 'sub', text: `${countText(ncol * nrow, 'cell')} × ${countText(s.trials_per_cell, 'trial')}, models ${models.join(', ')} (primary ${primary}); colour: fraction of trials stabilized in the primary model; black line: the bisected boundary; hover a cell for details, click it to play its trial 0.` }));
   const bnd = columns(D.boundary);
   const plotBox = el('div', { class: 'plot' });
   const tip = el('div', { class: 'tip' });
