@@ -13,7 +13,7 @@ export function widthOf(container) {
   return Math.max(240, content - 8);
 }
 
-/// The fewest labelled ticks any linear axis of the page's plots has had (the browser test).
+/// The fewest labelled ticks any plot axis of the page has had (the browser test).
 let fewestTicks = Infinity;
 export function fewestAxisTicks() { return fewestTicks; }
 
@@ -33,6 +33,34 @@ function atLeastTwoTicks(u, axisIdx, min, max, incr) {
   return ticks;
 }
 
+/// Ticks of a log axis (or of an asinh axis: then also 0 and the negatives): the powers of ten
+/// in the range, else its 1-2-5 multiples, else every digit's, else the range's ends, so that
+/// at least two fall in the range (uPlot's own may leave one, e.g. "1" on [1, 3]); at most 8.
+function logTicks(u, axisIdx, min, max) {
+  const sc = u.scales[u.axes[axisIdx].scale];
+  const signed = sc.distr === 4;
+  const big = Math.max(Math.abs(min), Math.abs(max));
+  const small = signed ? Math.min(big, sc.asinh ?? 1) : Math.max(min, Number.MIN_VALUE);
+  const inRange = (v) => v >= min - 1e-9 * Math.abs(v) && v <= max + 1e-9 * Math.abs(v);
+  let ticks = [];
+  for (const mantissas of [[1], [1, 2, 5], [1, 2, 3, 4, 5, 6, 7, 8, 9]]) {
+    const set = new Set(signed && inRange(0) ? [0] : []);
+    for (let k = Math.floor(Math.log10(small)); k <= Math.ceil(Math.log10(big)); k++) {
+      for (const m of mantissas) {
+        const v = Number((m * 10 ** k).toPrecision(12));
+        for (const s of signed ? [v, -v] : [v]) if (inRange(s)) set.add(s);
+      }
+    }
+    ticks = [...set].sort((a, b) => a - b);
+    if (ticks.length >= 2) break;
+  }
+  if (ticks.length < 2) ticks = [min, max];
+  const every = Math.ceil(ticks.length / 8);
+  if (every > 1) ticks = ticks.filter((_, i) => i % every === 0);
+  fewestTicks = Math.min(fewestTicks, ticks.length);
+  return ticks;
+}
+
 /// Tick labels with the digits the ticks need, no more.
 function tickLabels(u, splits) {
   return splits.map((v) => (v === 0 ? '0' : String(Number(v.toPrecision(6)))));
@@ -48,8 +76,9 @@ export function linePlot(container, x, series, opts = {}) {
   if (opts.yscale === 'asinh') scales.y = { distr: 4, asinh: opts.asinh ?? 1 };
   if (opts.yscale === 'log') scales.y = { distr: 3 };
   const linear = { splits: atLeastTwoTicks, values: tickLabels };
+  const logarithmic = { splits: logTicks, filter: (u, splits) => splits, values: tickLabels };
   const axes = [{ label: opts.xlabel ?? 't [s]', size: 36, ...linear },
-    { label: opts.ylabel ?? '', size: 56, ...(opts.yscale ? {} : linear) }];
+    { label: opts.ylabel ?? '', size: 56, ...(opts.yscale ? logarithmic : linear) }];
   if (opts.xticks) {  // category axis: labels at 0, 1, 2, ...
     axes[0].splits = () => opts.xticks.map((_, i) => i);
     axes[0].values = () => opts.xticks;

@@ -1,11 +1,15 @@
 // Browser test of pronk's pages (CTest: browser_pages). Builds the page templates from
 // web/src, has pronk write each page type (robot run, mechanism run, study, staged study,
-// map, comparison of designs), opens each in headless Chromium (Debian's /usr/bin/chromium
+// map, comparison of designs; a full-model robot run and a study without the stability analysis
+// beside the pulse-model ones), opens each in headless Chromium (Debian's /usr/bin/chromium
 // through playwright-core) and checks, at two playback times:
 //   - no console error, no page error, no network request (only the page's own file);
 //   - the 3-D canvas is not blank, the drawn body sits where the CSV puts it (projected
 //     with the page's camera) and moves between the two times in the CSV's direction;
-//   - a study report shows as many history points as its journal has evaluations;
+//   - a robot is inside the 3-D view's frame at its first and its last sample;
+//   - every plot axis has at least two labelled ticks;
+//   - a study report shows as many history points as its journal has evaluations, and the
+//     spectral radius only when the study computed it;
 //   - a comparison shows one playback per design and one row per trial.
 // Usage: node web/test/pages.mjs PRONK_EXE WORK_DIR [--screenshots DIR]
 // Exit 77 (CTest: skipped) when Chromium or the npm packages are absent.
@@ -41,8 +45,12 @@ const exitOf = (...args) => { try { run(...args); return 0; } catch (e) { return
 // The pages under test (simulate exits 1 for a run that fell; its page is still written).
 exitOf('simulate', 'studies/scenes/case3_legged_pulse.json', '--out', `${work}/robot`, '-q');
 exitOf('simulate', 'studies/mechanisms/four_leg_drop.json', '--out', `${work}/mechanism`, '-q');
+exitOf('simulate', 'studies/scenes/pr_running.json', '--out', `${work}/full`, '-q', '--set', '/simulation/duration=2');
 run('optimize', 'studies/study2_legged_pulse_duty50.json', '--out', `${work}/study`, '-q',
   '--set', '/optimizer/max_evaluations=24', '--set', '/scenarios/random/count=2', '--set', '/validation/random/count=2');
+run('optimize', 'studies/study2_legged_pulse_duty50.json', '--out', `${work}/study_nostab`, '-q',
+  '--set', '/optimizer/max_evaluations=6', '--set', '/scenarios/random/count=2', '--set', '/validation/random/count=2',
+  '--set', '/stability=false');
 run('compare', 'results/study4_cobyla/design.json', 'results/study4_bobyqa/design.json', '--out', `${work}/compare`,
   '-q', '--trials', '4', '--play', 'validation:1');
 fs.cpSync(path.join(root, 'results/study5_fidelity_gap'), `${work}/staged`, { recursive: true });
@@ -69,9 +77,12 @@ function evaluations(journal) {
 
 const pages = [
   { name: 'robot', file: 'robot/view.html', dir: 'robot', times: [0.1, 0.9] },
+  { name: 'full model', file: 'full/view.html', dir: 'full', times: [0.1, 0.9] },
   { name: 'mechanism', file: 'mechanism/view.html', dir: 'mechanism', times: [0.05, 0.5] },
   { name: 'study', file: 'study/report.html', dir: 'study/tuned', times: [0.1, 0.9],
-    evaluations: evaluations(`${work}/study/journal.jsonl`) },
+    evaluations: evaluations(`${work}/study/journal.jsonl`), spectralRow: true },
+  { name: 'study (stability off)', file: 'study_nostab/report.html', dir: 'study_nostab/tuned', times: [0.1, 0.9],
+    evaluations: evaluations(`${work}/study_nostab/journal.jsonl`), spectralRow: false },
   { name: 'staged', file: 'staged/report.html', dir: 'staged/stages/3_full/tuned', times: [0.1, 0.9],
     evaluations: ['1_impulse', '2_pulse', '3_full'].map((s) => evaluations(`${work}/staged/stages/${s}/journal.jsonl`)).reduce((a, b) => a + b) },
   { name: 'map', file: 'map/report.html', dir: null, times: [0.1, 0.9] },
@@ -185,6 +196,14 @@ for (const p of pages) {
     check(p.name, 'one playback per design', shown.designs === p.designs && shown.canvases === p.designs,
       `${shown.canvases} views of ${shown.designs} designs`);
     check(p.name, 'trial rows = trials.csv rows', shown.rows === p.trialRows, `${shown.rows} vs ${p.trialRows}`);
+  }
+  if (p.spectralRow !== undefined) {
+    // The spectral radius is a row of the metric tables only when the study computed it (off,
+    // it would read 0: a perfect value).
+    const rows = await page.evaluate(() => [...document.querySelectorAll('td')]
+      .filter((td) => td.textContent.trim() === 'spectral_radius').length);
+    check(p.name, p.spectralRow ? 'the spectral radius is shown (stability on)' : 'no spectral radius row (stability off)',
+      (rows > 0) === p.spectralRow, `${rows} rows`);
   }
   if (p.evaluations !== undefined) {
     const n = await page.evaluate(() => pronkTest.historyPoints());
