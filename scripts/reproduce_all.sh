@@ -2,8 +2,9 @@
 # Reproduces every committed design, each results/**/design.json (the stage designs of staged
 # studies too), with `pronk reproduce`, several at once, and fails when one does not reproduce.
 #   scripts/reproduce_all.sh [PRONK [REPRODUCE OPTIONS...]]
-# PRONK defaults to build/pronk. CTest runs it (test `reproduce_committed_designs`, so
-# `bash scripts/test.sh` and CI do) as
+# PRONK defaults to build/pronk. CTest runs the same reproductions one test per design
+# (`reproduce/<path>`, label `reproduce`; so `bash scripts/test.sh` and CI do); this script
+# runs them outside CTest, e.g.
 #   scripts/reproduce_all.sh build/pronk --strict
 # --strict: on the compiler and flags that recorded the designs, every value bit-identical
 # whatever the commit, so a change that moves a number must re-record the designs it moves.
