@@ -9,6 +9,7 @@
 #include <memory>
 #include <thread>
 
+#include "app/map_report_text.hpp"
 #include "app/mpi_command.hpp"
 #include "app/view_command.hpp"
 #include "io/load/input_error.hpp"
@@ -28,16 +29,6 @@ std::atomic<bool> g_map_stop{false};
 extern "C" void on_map_sigint(int) {
   g_map_stop.store(true);
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
-
-// Where along the first axis the two models first disagree, as a sentence (summary.json's
-// "disagreement": either value is null when there is none).
-std::string disagreement_sentence(const nlohmann::json& d, const std::string& axis) {
-  const nlohmann::json& first = d.at("first_disagreement");
-  const nlohmann::json& upto = d.at("no_disagreement_up_to");
-  if (first.is_null()) return "none anywhere on the grid (" + axis + " up to " + upto.dump() + ")";
-  if (upto.is_null()) return "the first already at the grid's first " + axis + " = " + first.dump();
-  return "none up to " + axis + " = " + upto.dump() + ", the first at " + first.dump();
 }
 
 int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o,
@@ -68,8 +59,7 @@ int report(const optimize::map::MapStudy& st, const optimize::map::MapOutcome& o
                 disagreement_sentence(d, st.axes[0].name).c_str());
   }
   for (const auto& b : o.boundaries) {
-    std::printf("  boundary row %ld: %s %s = %.6g\n", b.row, b.status.c_str(),
-                st.axes[0].name.c_str(), b.boundary);
+    std::printf("  %s\n", boundary_sentence(b, st.axes[0].name).c_str());
   }
   std::printf(
       "  results: %s/ (cells.csv, trials.csv, boundary.csv, summary.json, playback.json, "

@@ -96,6 +96,11 @@ TEST_CASE("map writes every output file and --resume recomputes nothing", "[cli]
   CHECK(summary["totals"]["cells"] == 6);
   CHECK(summary["boundary"]["rows"].size() == 2);
   CHECK(summary["spectral_radius_method"] == "stride map linearised by central differences");
+  // Each row's boundary, on stdout: a value, or (none_good) a sentence without one.
+  const std::string printed = slurp(d.path + "/stdout.txt");
+  CHECK(printed.find("  boundary row 0: ") != std::string::npos);
+  CHECK(printed.find("  boundary row 1: ") != std::string::npos);
+  CHECK(printed.find("none_good duty_cycle =") == std::string::npos);
   const std::string cells = slurp(out + "/cells.csv");
   REQUIRE(run(pronk_exe() + " map " + d.path + "/s.json --resume --out " + out, d.path) == 0);
   CHECK(slurp(d.path + "/stdout.txt").find("(0 computed, 6 from the journal)") !=
