@@ -274,6 +274,36 @@ json summary_json(const MapStudy& st, const std::vector<CellSummary>& cells,
   return j;
 }
 
+BoundaryBlock boundary_block(const MapStudy& st, const std::vector<BoundaryResult>& boundaries) {
+  const bool two_d = st.axes.size() > 1;
+  const MapAxis& ax = st.axes[0];
+  BoundaryBlock out;
+  std::ostringstream o;
+  o << "# boundary, row value, lowest cell with all trials stabilized (rows with one; a blank\n"
+       "# line at a row with none, where the line breaks)\n$boundary << EOD\n";
+  bool broken = false;  // a blank line already ends the data written so far
+  for (const BoundaryResult& b : boundaries) {
+    if (b.status == "none_good") {
+      if (out.any && !broken) o << '\n';
+      broken = true;
+      continue;
+    }
+    out.any = true;
+    broken = false;
+    out.band = out.band || b.first_good > ax.values.front();
+    const std::string edges = format_number(b.boundary) + ' ';
+    const std::string lower = ' ' + format_number(b.first_good) + '\n';
+    if (two_d) {
+      o << edges << format_number(st.axes[1].values[static_cast<size_t>(b.row)]) << lower;
+    } else {
+      o << edges << '0' << lower << edges << '1' << lower;
+    }
+  }
+  o << "EOD\n";
+  out.text = o.str();
+  return out;
+}
+
 std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& cells,
                            const std::vector<BoundaryResult>& boundaries, const std::string& what) {
   const bool two_d = st.axes.size() > 1;
@@ -323,22 +353,10 @@ std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& c
       << format_number(ey[static_cast<size_t>(c.row)]) << ' '
       << format_number(ey[static_cast<size_t>(c.row) + 1]) << ' ' << format_number(v) << '\n';
   }
-  o << "EOD\n# boundary, row value, lowest cell with all trials stabilized (rows with one)\n"
-       "$boundary << EOD\n";
-  bool any = false, band = false;
-  for (const BoundaryResult& b : boundaries) {
-    if (b.status == "none_good") continue;
-    any = true;
-    band = band || b.first_good > ax.values.front();
-    const std::string edges = format_number(b.boundary) + ' ';
-    const std::string lower = ' ' + format_number(b.first_good) + '\n';
-    if (two_d) {
-      o << edges << format_number(st.axes[1].values[static_cast<size_t>(b.row)]) << lower;
-    } else {
-      o << edges << '0' << lower << edges << '1' << lower;
-    }
-  }
   o << "EOD\n";
+  const BoundaryBlock bb = boundary_block(st, boundaries);
+  o << bb.text;
+  const bool any = bb.any, band = bb.band;
   o << "plot $cells using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette "
        "notitle";
   if (any)

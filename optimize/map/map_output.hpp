@@ -26,6 +26,16 @@ nlohmann::json summary_json(const MapStudy& st, const std::vector<CellSummary>& 
 /// Lowest axis-0 value of a row with a disagreement; < 0 index when none.
 long first_disagreement_column(const MapStudy& st, const std::vector<CellSummary>& cells, long row);
 
+/// The gnuplot datablock $boundary of a heat map: per row with a good cell, the boundary, the
+/// row's value and the lowest good cell; a blank line at a "none_good" row, so that gnuplot
+/// breaks the line there (as report.html does).
+struct BoundaryBlock {
+  std::string text;   ///< "# ...\n$boundary << EOD\n...EOD\n"
+  bool any = false;   ///< some row has a boundary
+  bool band = false;  ///< some row's lowest good cell is above the axis' first value
+};
+BoundaryBlock boundary_block(const MapStudy& st, const std::vector<BoundaryResult>& boundaries);
+
 /// The gnuplot script of a heat map: "fraction" (primary model's fraction
 /// stabilized) or "disagreement" (fraction of trials the two models disagree on).
 std::string heatmap_script(const MapStudy& st, const std::vector<CellSummary>& cells,
