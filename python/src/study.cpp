@@ -15,6 +15,7 @@
 #include "python/src/bindings.hpp"
 #include "python/src/gil_probe.hpp"
 #include "python/src/scene_object.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::python {
 
@@ -277,15 +278,20 @@ void bind_study(py::module_& m) {
       .def_readonly("last_wall_time", &PyStudy::last_wall_time,
                     "Seconds the C++ evaluator took inside the last evaluate() call.")
       .def("validation", &PyStudy::validation,
-           "The same objective over the study's held-out validation scenarios, or None.")
+           "Another Study: the same objective (same parameters, bounds, threads and unit\n"
+           "scaling) over the study's held-out validation scenarios instead of its training\n"
+           "ones, or None when the study has no validation set. Evaluate the tuned point on\n"
+           "it, e.g. study.validation().evaluate_full(x), to see how the design generalizes.")
       .def("scene_at", &scene_at, py::arg("x"),
            "The scene at x (a pronk.Scene, for pronk.simulate).")
       .def("_time_native", &time_native, py::arg("x"), py::arg("repeats"),
            "Benchmark hook: seconds of each of `repeats` evaluations in a C++ loop.")
       .def("__repr__", [](const PyStudy& s) {
-        return "<pronk.Study " + s.study().name + ": " + std::to_string(s.params().size()) +
-               " parameters, " + std::to_string(s.evaluator().config().scenarios.scenarios.size()) +
-               " scenarios, " + std::to_string(s.threads()) + " threads>";
+        const auto n = [](size_t k) { return static_cast<long>(k); };
+        return "<pronk.Study " + s.study().name + ": " +
+               run::count_text(n(s.params().size()), "parameter") + ", " +
+               run::count_text(n(s.evaluator().config().scenarios.scenarios.size()), "scenario") +
+               ", " + run::count_text(s.threads(), "thread") + ">";
       });
 }
 
