@@ -4,9 +4,9 @@
 #include <exception>
 #include <limits>
 
-#include "optimize/evaluator_wire.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/evaluator_wire.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
@@ -116,6 +116,11 @@ Evaluation Evaluator::evaluate_full(const std::vector<double>& unit) const {
   return evaluate_impl(unit, true);
 }
 
+Evaluation Evaluator::evaluate_full(const std::vector<double>& unit,
+                                    const std::function<void()>& on_trial) const {
+  return evaluate_impl(unit, true, &on_trial);
+}
+
 bool Evaluator::bind(const std::vector<double>& unit, Evaluation& ev, scene::Scene& base) const {
   const size_t nc = config_.constraints.size();
   auto fail = [&](std::string why) {
@@ -216,7 +221,8 @@ void Evaluator::finish(Evaluation& ev, const scene::Scene& base,
   }
 }
 
-Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parallel) const {
+Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parallel,
+                                    const std::function<void()>* on_trial) const {
   if (config_.farm) return evaluate_on_farm({unit}).front();
   const auto t0 = std::chrono::steady_clock::now();
   Evaluation ev;
@@ -229,7 +235,10 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
   // The scenario runs and the stability analysis, in parallel.
   const long n = static_cast<long>(config_.scenarios.scenarios.size());
   std::vector<JobOutcome> jobs(static_cast<size_t>(n) + 1);
-  auto job = [&](long i) { jobs[static_cast<size_t>(i)] = run_job(base, i); };
+  auto job = [&](long i) {
+    jobs[static_cast<size_t>(i)] = run_job(base, i);
+    if (on_trial && i > 0) (*on_trial)();  // job 0 is the stability analysis, not a trial
+  };
   if (parallel) {
     pool_->parallel_for(n + 1, job);
   } else {

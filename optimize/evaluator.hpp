@@ -4,6 +4,7 @@
 // scenario runs of one evaluation go in parallel.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -82,6 +83,11 @@ class Evaluator final : public Problem {
 
   /// The full evaluation at optimizer coordinates `unit` (each in [0, 1]).
   Evaluation evaluate_full(const std::vector<double>& unit) const;
+  /// The same, calling `on_trial` (from whichever worker thread ran it: it must be
+  /// thread-safe and must not throw) as each scenario run ends, for progress. On a farm the
+  /// runs are remote and `on_trial` is not called.
+  Evaluation evaluate_full(const std::vector<double>& unit,
+                           const std::function<void()>& on_trial) const;
   /// Full evaluations of several points, in parallel over the points (each
   /// point's scenarios serial); the same numbers as evaluate_full.
   std::vector<Evaluation> evaluate_full_batch(const std::vector<std::vector<double>>& xs) const;
@@ -108,7 +114,8 @@ class Evaluator final : public Problem {
   nlohmann::json compute_job(const std::vector<double>& job) const;
 
  private:
-  Evaluation evaluate_impl(const std::vector<double>& unit, bool parallel) const;
+  Evaluation evaluate_impl(const std::vector<double>& unit, bool parallel,
+                           const std::function<void()>* on_trial = nullptr) const;
   /// Binds the parameters; false (and ev failed) when they make no valid scene.
   bool bind(const std::vector<double>& unit, Evaluation& ev, scene::Scene& base) const;
   JobOutcome run_job(const scene::Scene& base, long job) const;

@@ -23,7 +23,7 @@
 #include "optimize/output_lock.hpp"
 #include "optimize/reproduction_record.hpp"
 #include "optimize/study_history.hpp"
-#include "sim/run/count_text.hpp"
+#include "optimize/validation_run.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
@@ -420,30 +420,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
                                                            : o.result.best_x);
   std::optional<Evaluator> val;
-  if (st.validation) {
-    const double v0 = now_s();
-    progress_note(
-        opt.progress,
-        "  " + st.name + ": validating on " +
-            run::count_text(static_cast<long>(st.validation->scenarios.size()), "held-out trial") +
-            " (initial and tuned design), " + format_duration(now_s() - t0) + " elapsed");
-    val.emplace(validation_evaluator(st, opt.threads, opt.farm));
-    o.validated = true;
-    o.validation_initial = val->evaluate_full(o.initial.unit);
-    o.validation_best = val->evaluate_full(o.best.unit);
-    if (st.validation->compare_nominal && perturbs_robot(*st.validation)) {
-      Study nominal = st;
-      nominal.validation = with_nominal_robot(*st.validation);
-      o.validation_compared = true;
-      o.validation_nominal =
-          validation_evaluator(nominal, opt.threads, opt.farm).evaluate_full(o.best.unit);
-    }
-    char stabilized[32];
-    std::snprintf(stabilized, sizeof stabilized, "%.1f %%",
-                  100.0 * o.validation_best.aggregated["stabilized"]);
-    progress_note(opt.progress, "  " + st.name + ": validated in " + format_duration(now_s() - v0) +
-                                    ", tuned design stabilized in " + stabilized + " of them");
-  }
+  if (st.validation) run_validation(st, opt, t0, o, val);
   o.wall_time = now_s() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed
   // on its own: the study's wall time stays the optimization's and the validation's).

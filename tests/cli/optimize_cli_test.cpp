@@ -181,6 +181,10 @@ TEST_CASE("optimize into a log prints progress lines with the time elapsed and l
   CHECK(err.find(" elapsed, done, best feasible cost ") != std::string::npos);
   CHECK(err.find("study2_legged_pulse_duty50: validating on 64 held-out trials") !=
         std::string::npos);
+  // The validation counts its trial runs (64 trials x 2 designs), the first and the last.
+  CHECK(err.find("study2_legged_pulse_duty50: validation trial runs 1/128, ") != std::string::npos);
+  CHECK(err.find("study2_legged_pulse_duty50: validation trial runs 128/128, ") !=
+        std::string::npos);
   CHECK(err.find("study2_legged_pulse_duty50: validated in ") != std::string::npos);
   // compare.svg plots every attitude angle, pitch and yaw beside roll (trajectory.csv's 8-10).
   const std::string gp = slurp(d.path + "/o/compare.gp");
