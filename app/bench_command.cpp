@@ -97,7 +97,8 @@ json run_peer(const std::string& name, const std::string& what, const BenchArgs&
 
 void progress(const BenchArgs& a, const std::string& what) {
   // One line per stage, with the time since the first, on a terminal or in a log (not with
-  // --quiet). The stages differ too much in cost for an estimate of the time left.
+  // --quiet). The stages differ too much in cost for an estimate of the time left; within
+  // the robustness stage, each rung counts its cells with the time left (BenchConfig).
   static const auto t0 = std::chrono::steady_clock::now();
   if (a.quiet) return;
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -110,6 +111,7 @@ bench::BenchConfig bench_config(const BenchArgs& args) {
   c.quick = args.quick;
   c.repeat = args.repeat > 0 ? args.repeat : (args.quick ? 1 : 3);
   c.studies_dir = args.studies_dir.empty() ? PRONK_STUDIES_DIR : args.studies_dir;
+  c.progress = optimize::progress_style(args.quiet);
   if (!std::filesystem::is_regular_file(c.studies_dir + "/scenes/case3_legged_pulse.json")) {
     throw io::InputError(c.studies_dir, "",
                          "a studies/ directory with scenes/case3_legged_pulse.json",

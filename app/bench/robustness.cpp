@@ -5,9 +5,10 @@
 #include <vector>
 
 #include "app/bench/suite.hpp"
+#include "io/load/scene_loader.hpp"
 #include "optimize/map/map_engine.hpp"
 #include "optimize/map/map_study.hpp"
-#include "io/load/scene_loader.hpp"
+#include "optimize/progress.hpp"
 
 namespace pronk::app::bench {
 
@@ -38,13 +39,19 @@ optimize::map::MapStudy robustness_study(const BenchConfig& c, const std::string
   return optimize::map::parse_map_study(doc, file, c.studies_dir);
 }
 
-RungRobustness robustness_rung(const optimize::map::MapStudy& st, const std::string& rung) {
+RungRobustness robustness_rung(const optimize::map::MapStudy& st, const std::string& rung,
+                               optimize::ProgressStyle style) {
   namespace m = optimize::map;
   RungRobustness r;
   r.model = rung;
   const double c0 = thread_cpu();
   std::vector<m::CellResult> cells;
-  for (long i = 0; i < st.cells(); ++i) cells.push_back(m::compute_cell(st, i));
+  optimize::Progress progress(style, "bench: robustness, " + rung + " rung: cell", st.cells());
+  for (long i = 0; i < st.cells(); ++i) {
+    cells.push_back(m::compute_cell(st, i));
+    progress.update(i + 1);
+  }
+  progress.finish();
   const std::vector<m::CellSummary> sums = m::summarize(st, cells);
   const m::BoundaryResult b = m::bisect_row(st, m::initial_bracket(st, sums, 0));
   r.cpu_s = thread_cpu() - c0;
@@ -96,7 +103,7 @@ LadderRobustness ladder_robustness(const BenchConfig& c) {
       out.rungs.push_back(r);
       continue;
     }
-    out.rungs.push_back(robustness_rung(st, model));
+    out.rungs.push_back(robustness_rung(st, model, c.progress));
   }
   // Disagreements with the pulse rung, trial by trial (the seed's criterion).
   const RungRobustness* pulse = nullptr;

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench/measure.hpp"
+#include "optimize/progress.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::app::bench {
@@ -23,6 +24,8 @@ struct BenchConfig {
   bool quick = false;       ///< CI size: fewer points, shorter runs (< 1 min in total)
   int repeat = 3;           ///< timed repeats per point; the median wall time is reported
   std::string studies_dir;  ///< the shipped studies/ directory (scenes are read from it)
+  /// Progress within a stage where its count is known (the robustness rungs' cells).
+  optimize::ProgressStyle progress = optimize::ProgressStyle::kOff;
 };
 
 /// One point of a work-precision diagram.
