@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +15,7 @@
 #include "io/load/json_reader.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/crash_point.hpp"
+#include "optimize/progress.hpp"
 #include "optimize/scenario.hpp"
 #include "optimize/study.hpp"
 
@@ -211,12 +211,6 @@ void for_each_journal_record(const std::string& path,
 
 // ---- writing ---------------------------------------------------------------------------
 
-namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 JournalWriter::JournalWriter(const std::string& path, const json& header, std::string previous,
                              double sync_interval)
     : path_(path), previous_(std::move(previous)), sync_interval_(sync_interval) {
@@ -248,13 +242,13 @@ void JournalWriter::append(const json& record) {
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
     throw std::runtime_error("cannot write journal " + path_ + ": " + std::strerror(errno));
   previous_ = line.at("checksum").get<std::string>();
-  if (sync_interval_ <= 0.0 || now_s() - last_sync_ > sync_interval_) sync();
+  if (sync_interval_ <= 0.0 || monotonic_seconds() - last_sync_ > sync_interval_) sync();
 }
 
 void JournalWriter::sync() {
   if (::fsync(fileno(file_)) != 0)
     throw std::runtime_error("cannot sync journal " + path_ + ": " + std::strerror(errno));
-  last_sync_ = now_s();
+  last_sync_ = monotonic_seconds();
 }
 
 json journal_record(long index, const char* purpose, const Evaluation& e,

@@ -15,11 +15,11 @@ namespace {
 constexpr double kTerminalPeriod = 0.2;  ///< [s] between rewrites of a terminal line
 constexpr double kLogPeriod = 30.0;      ///< [s] between plain lines in a log
 
-double now_s() {
+}  // namespace
+
+double monotonic_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-
-}  // namespace
 
 ProgressStyle progress_style(bool quiet) {
   if (quiet) return ProgressStyle::kOff;
@@ -40,9 +40,13 @@ std::string format_duration(double seconds) {
 }
 
 Progress::Progress(ProgressStyle style, std::string label, long total, long already)
-    : style_(style), label_(std::move(label)), total_(total), already_(already), t0_(now_s()) {}
+    : style_(style),
+      label_(std::move(label)),
+      total_(total),
+      already_(already),
+      t0_(monotonic_seconds()) {}
 
-double Progress::elapsed() const { return now_s() - t0_; }
+double Progress::elapsed() const { return monotonic_seconds() - t0_; }
 
 std::string Progress::line(long done, const std::string& detail) const {
   const double t = elapsed();

@@ -13,6 +13,9 @@ enum class ProgressStyle { kOff, kTerminal, kLog };
 /// Off when quiet; otherwise a terminal line when stderr is a terminal, else log lines.
 ProgressStyle progress_style(bool quiet);
 
+/// The monotonic clock progress, timings and wall times read [s] (steady_clock).
+double monotonic_seconds();
+
 /// "8 s", "3 min 05 s", "2 h 04 min".
 std::string format_duration(double seconds);
 

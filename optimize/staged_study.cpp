@@ -1,7 +1,6 @@
 #include "optimize/staged_study.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "io/write/atomic_file.hpp"
 #include "io/write/run_output.hpp"
 #include "optimize/output_lock.hpp"
+#include "optimize/progress.hpp"
 #include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::optimize {
@@ -19,10 +19,6 @@ namespace pronk::optimize {
 using nlohmann::json;
 
 namespace {
-
-double staged_now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Keys a stage may set for itself; every other study key is shared by all stages.
 const std::vector<std::string>& stage_study_keys() {
@@ -438,7 +434,7 @@ std::string stages_after(const StagedStudy& st, size_t k,
 }  // namespace
 
 StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt) {
-  const double t0 = staged_now_s();
+  const double t0 = monotonic_seconds();
   StagedOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
   io::make_directories(o.out_dir + "/stages");
@@ -451,13 +447,13 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
     progress_note(opt.progress, st.name + ": stage " + std::to_string(k + 1) + "/" +
                                     std::to_string(st.stages.size()) + " " + st.stages[k].name +
                                     " (" + st.stages[k].model + " model), " +
-                                    format_duration(staged_now_s() - t0) + " elapsed" +
+                                    format_duration(monotonic_seconds() - t0) + " elapsed" +
                                     stages_after(st, k, initial));
     o.stages.push_back(
         run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
     if (stopped) {
       o.ok = false;
-      o.wall_time = staged_now_s() - t0;
+      o.wall_time = monotonic_seconds() - t0;
       return o;  // the finished stages' results stay on disk; --resume continues
     }
   }
@@ -474,7 +470,7 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
     o.gap_first = evaluate_in_stage(st, last, o.stages.front().values, opt);
     o.final_best = evaluate_in_stage(st, last, o.stages.back().values, opt);
   }
-  o.wall_time = staged_now_s() - t0;
+  o.wall_time = monotonic_seconds() - t0;
   io::write_file_atomic(o.out_dir + "/design.json",
                         io::dump_checked(staged_design(st, o, st.original)));
   io::write_file_atomic(o.out_dir + "/summary.md", staged_summary(st, o));

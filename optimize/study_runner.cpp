@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include "optimize/journal.hpp"
 #include "optimize/journal_check.hpp"
 #include "optimize/output_lock.hpp"
+#include "optimize/progress.hpp"
 #include "optimize/reproduction_record.hpp"
 #include "optimize/study_history.hpp"
 #include "optimize/validation_run.hpp"
@@ -48,10 +48,6 @@ std::string metric_rows(const MetricMap& a, const MetricMap& b, bool stability) 
 using nlohmann::json;
 
 namespace {
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // The Problem the driver sees: replays the journal on --resume (same points in
 // the same order give the recorded results without simulating), otherwise
@@ -386,7 +382,7 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
 }
 
 StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
-  const double t0 = now_s();
+  const double t0 = monotonic_seconds();
   StudyOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;
   io::make_directories(o.out_dir);
@@ -421,12 +417,12 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
                                                            : o.result.best_x);
   std::optional<Evaluator> val;
   if (st.validation) run_validation(st, opt, t0, o, val);
-  o.wall_time = now_s() - t0;
+  o.wall_time = monotonic_seconds() - t0;
   // What another build needs to reproduce the design honestly: the perturbation run (timed
   // on its own: the study's wall time stays the optimization's and the validation's).
   o.reproduction = record_reproduction(evaluator, o.best, val ? &*val : nullptr,
                                        val ? &o.validation_best : nullptr);
-  o.reproduction["wall_time_s"] = now_s() - t0 - o.wall_time;
+  o.reproduction["wall_time_s"] = monotonic_seconds() - t0 - o.wall_time;
 
   write_history(o.out_dir, journal_path, evaluator);
   io::write_file_atomic(o.out_dir + "/design.json",

@@ -1,6 +1,5 @@
 #include "optimize/validation_run.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -11,17 +10,9 @@
 
 namespace pronk::optimize {
 
-namespace {
-
-double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
-
 void run_validation(const Study& st, const StudyRunOptions& opt, double t0, StudyOutcome& o,
                     std::optional<Evaluator>& val) {
-  const double v0 = seconds_now();
+  const double v0 = monotonic_seconds();
   const long n = static_cast<long>(st.validation->scenarios.size());
   const bool nominal = st.validation->compare_nominal && perturbs_robot(*st.validation);
   const long designs = nominal ? 3 : 2;
@@ -54,7 +45,7 @@ void run_validation(const Study& st, const StudyRunOptions& opt, double t0, Stud
   std::snprintf(stabilized, sizeof stabilized, "%.1f %%",
                 100.0 * o.validation_best.aggregated["stabilized"]);
   progress_note(opt.progress, "  " + st.name + ": validated in " +
-                                  format_duration(seconds_now() - v0) +
+                                  format_duration(monotonic_seconds() - v0) +
                                   ", tuned design stabilized in " + stabilized + " of them");
 }
 

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -23,19 +22,12 @@
 #include "optimize/map/map_journal.hpp"
 #include "optimize/map/map_output.hpp"
 #include "optimize/output_lock.hpp"
+#include "optimize/progress.hpp"
 #include "optimize/thread_pool.hpp"
 
 namespace pronk::optimize::map {
 
 using nlohmann::json;
-
-namespace {
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 json compute_task(const MapStudy& st, const MapTask& task) {
   if (task.kind == 0) {
@@ -177,7 +169,7 @@ bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResul
     }
   }
   long done = out->cells_replayed;
-  const double t_cells = now_s();
+  const double t_cells = monotonic_seconds();
   run.runner.run(st, tasks,
                  InTaskOrder(tasks,
                              [&](const MapTask& task, const json& r) {
@@ -193,11 +185,11 @@ bool run_map_cells(const MapRun& run, MapJournalState& js, std::vector<CellResul
       out->status = "stopped";
       out->reason = "interrupted after " + std::to_string(done) + " of " +
                     std::to_string(st.cells()) + " cells (journal kept; --resume continues)";
-      out->wall_time = now_s() - run.t0;
+      out->wall_time = monotonic_seconds() - run.t0;
       return false;
     }
   }
-  out->cells_time = now_s() - t_cells;
+  out->cells_time = monotonic_seconds() - t_cells;
   return true;
 }
 
@@ -223,7 +215,7 @@ bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome
     }
   }
   long bdone = 0;
-  const double t_bisect = now_s();
+  const double t_bisect = monotonic_seconds();
   run.runner.run(
       st, tasks,
       InTaskOrder(tasks,
@@ -235,7 +227,7 @@ bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome
                     run.progress("boundary rows", ++bdone, static_cast<long>(tasks.size()));
                   }),
       run.options.stop_flag);
-  out->bisection_time = now_s() - t_bisect;
+  out->bisection_time = monotonic_seconds() - t_bisect;
   // The lower edge comes from the cells (not journaled).
   for (long r = 0; r < st.rows(); ++r)
     out->boundaries[static_cast<size_t>(r)].first_good =
@@ -244,7 +236,7 @@ bool run_map_boundaries(const MapRun& run, const MapJournalState& js, MapOutcome
     if (!h) {
       out->status = "stopped";
       out->reason = "interrupted during the boundary bisection (journal kept; --resume continues)";
-      out->wall_time = now_s() - run.t0;
+      out->wall_time = monotonic_seconds() - run.t0;
       return false;
     }
   }
@@ -287,7 +279,7 @@ void write_map_outputs(const MapStudy& st, const MapRunOptions& options,
 MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   const std::string bad = options.validate();
   if (!bad.empty()) throw std::invalid_argument("MapRunOptions: " + bad);
-  const double t0 = now_s();
+  const double t0 = monotonic_seconds();
   LocalRunner local(options.threads);
   TaskRunner& runner = options.runner ? *options.runner : local;
   MapOutcome out;
@@ -311,10 +303,10 @@ MapOutcome run_map(const MapStudy& st, const MapRunOptions& options) {
   if (!run_map_boundaries(run, js, &out)) return out;
   journal.sync();
 
-  const double t_out = now_s();
+  const double t_out = monotonic_seconds();
   write_map_outputs(st, options, cells, &out);
-  out.output_time = now_s() - t_out;
-  out.wall_time = now_s() - t0;
+  out.output_time = monotonic_seconds() - t_out;
+  out.wall_time = monotonic_seconds() - t0;
   return out;
 }
 

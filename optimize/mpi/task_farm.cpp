@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "io/load/input_error.hpp"
+#include "optimize/progress.hpp"
 #endif
 
 namespace pronk::optimize::mpi {
@@ -71,10 +72,6 @@ constexpr long kGuidedDivisor = 4;  // chunk = max(1, tasks left / (4 x workers)
 
 void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI error in ") + what);
-}
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // Sleeps between polls that found nothing: 50 us, doubling to 1 ms. Waiting in a
@@ -461,7 +458,7 @@ void TaskFarm::run(const std::vector<std::vector<double>>& tasks, const ComputeF
 
 WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
   WorkerStats stats;
-  const double t0 = now_s();
+  const double t0 = monotonic_seconds();
   std::deque<std::vector<double>> chunks;  // in hand, in the order received
   bool cancel = false, released = false;
   PendingSends sends;
@@ -485,7 +482,7 @@ WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
   Backoff backoff;
   while (!released) {
     if (chunks.empty()) {
-      const double w0 = now_s();
+      const double w0 = monotonic_seconds();
       if (receive()) {
         backoff.reset();
       } else {
@@ -493,7 +490,7 @@ WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
         backoff.sleep();
       }
       cancel = false;  // a cancel that found nothing in hand (its chunks were answered already)
-      stats.idle_s += now_s() - w0;
+      stats.idle_s += monotonic_seconds() - w0;
       continue;
     }
     const std::vector<double> chunk = std::move(chunks.front());
@@ -512,7 +509,7 @@ WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
       const std::vector<double> task(chunk.begin() + static_cast<std::ptrdiff_t>(k + 2),
                                      chunk.begin() + static_cast<std::ptrdiff_t>(k + 2 + length));
       k += 2 + length;
-      const double c0 = now_s();
+      const double c0 = monotonic_seconds();
       try {
         const json r = compute(task);
         out += std::to_string(position) + " " + r.dump() + "\n";
@@ -521,7 +518,7 @@ WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
         out = encode_current_error();
         tag = kTagError;
       }
-      stats.compute_s += now_s() - c0;
+      stats.compute_s += monotonic_seconds() - c0;
       if (tag == kTagError) break;
     }
     if (released) break;
@@ -535,7 +532,7 @@ WorkerStats serve(const ComputeFn& compute, const ContextFn& on_context) {
     sends.progress();
   }
   sends.wait_all();
-  stats.total_s = now_s() - t0;
+  stats.total_s = monotonic_seconds() - t0;
   return stats;
 }
 
