@@ -65,7 +65,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
 
 namespace {
 
-std::string threads_text(int n) { return std::to_string(n) + (n == 1 ? " thread" : " threads"); }
+std::string threads_text(int n) { return run::count_text(n, "thread"); }
 
 // The command's options for a study run; Ctrl-C from here on stops at the next evaluation.
 optimize::StudyRunOptions run_options(const OptimizeArgs& args, optimize::JobFarm* farm) {

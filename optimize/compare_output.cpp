@@ -6,6 +6,7 @@
 #include "io/load/input_error.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/simulation_output.hpp"
+#include "sim/run/count_text.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize {
@@ -26,7 +27,7 @@ std::string set_description(const ScenarioSet& set, const json& entry) {
   } else {
     std::snprintf(length, sizeof length, "%g s", set.duration);
   }
-  std::string out = std::to_string(n) + (n == 1 ? " trial of " : " trials of ") + length;
+  std::string out = run::count_text(n, "trial") + " of " + length;
   std::string parts;
   if (entry.contains("list") && entry["list"].is_array()) {
     parts = std::to_string(entry["list"].size()) + " listed";

@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "sim/run/count_text.hpp"
+
 namespace pronk::optimize::map {
 
 namespace {
@@ -38,7 +40,7 @@ void MpiRunner::run(const MapStudy& st, const std::vector<MapTask>& tasks,
 
 std::string MpiRunner::describe() const {
   const int n = farm_.ranks();
-  return std::to_string(n) + (n == 1 ? " MPI rank" : " MPI ranks");
+  return run::count_text(n, "MPI rank");
 }
 
 MpiWorkerStats mpi_serve(const MapStudy& st) {

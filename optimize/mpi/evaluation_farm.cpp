@@ -7,6 +7,7 @@
 
 #include "optimize/evaluator.hpp"
 #include "optimize/evaluator_wire.hpp"
+#include "sim/run/count_text.hpp"
 
 namespace pronk::optimize::mpi {
 
@@ -36,7 +37,7 @@ std::vector<nlohmann::json> MpiJobFarm::run(long id, const Evaluator& here,
 
 std::string MpiJobFarm::describe() const {
   const int n = farm_.ranks();
-  return std::to_string(n) + (n == 1 ? " MPI rank" : " MPI ranks");
+  return run::count_text(n, "MPI rank");
 }
 
 WorkerStats serve_evaluations() {
