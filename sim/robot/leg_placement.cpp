@@ -31,12 +31,17 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
 namespace {
 
 /// The unit leg (hip -> foot) for the foot at horizontal offset r from the hip [m]: with the
-/// stance roll held, its lateral part along the takeoff velocity instead (see
+/// stance roll held, its part across the body (the hips' ab/adduction plane, turned by the
+/// heading from the world's x axis [rad]) along the takeoff velocity instead (see
 /// free_leg_direction); within max_angle of the vertical.
 Vector3d leg_for_foot(Eigen::Vector2d r, double leg, double max_angle, bool held_roll,
-                      const Vector3d& v_takeoff) {
+                      const Vector3d& v_takeoff, double heading) {
   if (held_roll && v_takeoff.z() > 1e-12) {
-    r.y() = -leg * v_takeoff.y() / std::hypot(v_takeoff.y(), v_takeoff.z());
+    const Eigen::Rotation2Dd to_world(heading);
+    Eigen::Vector2d r_body = to_world.inverse() * r;
+    const double v_across = (to_world.inverse() * v_takeoff.head<2>()).y();
+    r_body.y() = -leg * v_across / std::hypot(v_across, v_takeoff.z());
+    r = to_world * r_body;
   }
   const double r_max = leg * std::sin(max_angle);
   if (r.norm() > r_max) r *= r_max / r.norm();
@@ -59,23 +64,46 @@ Vector3d leg_for_foot(Eigen::Vector2d r, double leg, double max_angle, bool held
 /// takeoff velocity follows the legs: the leg is put along the desired takeoff
 /// velocity v_takeoff in y instead (no neutral point).
 Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
-                            double max_angle, bool held_roll, const Vector3d& v_takeoff) {
+                            double max_angle, bool held_roll, const Vector3d& v_takeoff,
+                            double heading) {
   Eigen::Vector2d r = 0.5 * stance * v.head<2>();
   if (P.z() > 1e-12) r -= leg * P.head<2>() / P.norm();
-  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff);
+  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff, heading);
 }
 
 /// The inverted-pendulum placement (see the header).
 Vector3d pendulum_leg_direction(const Vector3d& P, const Vector3d& v0, double stance, double leg,
                                 double mass, double max_angle, bool held_roll,
-                                const Vector3d& v_takeoff) {
+                                const Vector3d& v_takeoff, double heading) {
   Eigen::Vector2d r = 0.5 * stance * v0.head<2>();
   if (P.z() > 1e-12 && stance > 0.0 && mass > 0.0) {
     const double w = std::sqrt(P.z() / (stance * mass * leg));  // [1/s]
     const double wt = w * stance;
     r = ((std::cosh(wt) - 1.0) * v0.head<2>() - P.head<2>() / mass) / (w * std::sinh(wt));
   }
-  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff);
+  return leg_for_foot(r, leg, max_angle, held_roll, v_takeoff, heading);
+}
+
+std::vector<Vector3d> yaw_leg_directions(const Vector3d& d,
+                                         const std::vector<Eigen::Vector2d>& hips, double Hz,
+                                         double Pz, double leg, double max_angle) {
+  std::vector<Vector3d> u(hips.size(), d);
+  if (hips.empty() || !(Pz > 1e-12) || !(d.z() < -1e-12) || Hz == 0.0) return u;
+  const double n = static_cast<double>(hips.size());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& h : hips) centre += h / n;
+  double levers = 0.0;  // sum of |lever|^2 [m^2]
+  for (const auto& h : hips) levers += (h - centre).squaredNorm();
+  if (!(levers > 1e-12)) return u;
+  const double r_max = leg * std::sin(max_angle);
+  for (size_t i = 0; i < hips.size(); ++i) {
+    const Eigen::Vector2d lever = hips[i] - centre;
+    const Eigen::Vector2d p = Hz * Eigen::Vector2d(-lever.y(), lever.x()) / levers;  // [N s]
+    Eigen::Vector2d r = leg * d.head<2>() - leg * n * p / Pz;
+    if (r.norm() > r_max) r *= r_max / r.norm();
+    u[i] = Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+  }
+  return u;
 }
 
 double free_leg_response(const Vector3d& P, double stance, double leg, double mass) {
@@ -153,13 +181,26 @@ std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::
   Vector3d v_takeoff = s.velocity + pred.command.P_world / total_mass_;
   v_takeoff.head<2>() += data_.placement_trim / total_mass_;
   v_takeoff.z() = std::max(-s.velocity.z(), 0.1);
+  // The pendulum rule holds the roll across the body as it is headed at touchdown and turns
+  // the legs apart for the yaw asked; the neutral-point rule (the older placement, kept as it
+  // was for the designs tuned with it) holds it across the world's x axis, legs parallel.
+  const double heading =
+      prs_.pendulum_placement ? std::atan2(R_td(1, 0), R_td(0, 0)) : 0.0;
   const Vector3d d =
       prs_.pendulum_placement
           ? pendulum_leg_direction(P, s.velocity, data_.spring_stance, model_.rest_length[0],
-                                   total_mass_, prs_.max_leg_angle, held_roll, v_takeoff)
+                                   total_mass_, prs_.max_leg_angle, held_roll, v_takeoff, heading)
           : free_leg_direction(P, v_mean, data_.spring_stance, model_.rest_length[0],
-                               prs_.max_leg_angle, held_roll, v_takeoff);
-  return std::vector<Vector3d>(legs_, R_td.transpose() * d);
+                               prs_.max_leg_angle, held_roll, v_takeoff, heading);
+  std::vector<Vector3d> u(legs_, d);
+  if (prs_.pendulum_placement) {
+    std::vector<Eigen::Vector2d> hips(legs_);
+    for (size_t i = 0; i < legs_; ++i) hips[i] = (R_td * model_.hip[i]).head<2>();
+    u = yaw_leg_directions(d, hips, (R_td * pred.command.H_body).z(), P.z(),
+                           model_.rest_length[0], prs_.max_leg_angle);
+  }
+  for (auto& ui : u) ui = R_td.transpose() * ui;
+  return u;
 }
 
 /// Level feet: each leg's rest length such that every foot reaches the ground together at

@@ -32,9 +32,11 @@ std::vector<Vector3d> leg_directions(const control::StancePlan& plan, size_t leg
 /// over its gripped feet only along the legs in the lateral plane (ab/adduction is
 /// held too), so the lateral velocity across the legs is lost at touchdown and the
 /// takeoff velocity follows the legs: the leg is put along the desired takeoff
-/// velocity v_takeoff in y instead (no neutral point).
+/// velocity v_takeoff across the body instead (no neutral point); heading: the body x axis's
+/// angle from the world's x axis at touchdown [rad].
 Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance, double leg,
-                            double max_angle, bool held_roll, const Vector3d& v_takeoff);
+                            double max_angle, bool held_roll, const Vector3d& v_takeoff,
+                            double heading = 0.0);
 
 /// The same placement with the stance's horizontal motion solved as an inverted pendulum
 /// over the foot: with the mean vertical ground force F = P_z / T_s on the leg height h, the
@@ -45,7 +47,17 @@ Vector3d free_leg_direction(const Vector3d& P, const Vector3d& v, double stance,
 /// wT ~ 1.3-1.7, where the linear rule's foot is several mm too far forward.
 Vector3d pendulum_leg_direction(const Vector3d& P, const Vector3d& v0, double stance, double leg,
                                 double mass, double max_angle, bool held_roll,
-                                const Vector3d& v_takeoff);
+                                const Vector3d& v_takeoff, double heading = 0.0);
+
+/// The legs turned apart for a yaw impulse: the common leg d (world, unit hip -> foot) with
+/// each foot moved across its hip's lever from the hips' centre so that the legs' horizontal
+/// pushes add up to Hz about the vertical [N m s] and to nothing in translation: a leg that
+/// carries Pz / n of the stance's vertical impulse [N s] pushes -Pz r / (n leg) sideways for
+/// its foot moved by r. hips: the hips' horizontal positions (world axes) [m]; each foot stays
+/// within max_angle of the vertical. Unit directions hip -> foot, world axes.
+std::vector<Vector3d> yaw_leg_directions(const Vector3d& d,
+                                         const std::vector<Eigen::Vector2d>& hips, double Hz,
+                                         double Pz, double leg, double max_angle);
 
 /// How the horizontal impulse a placed leg delivers answers a change of the impulse it was
 /// placed for, linearised: the foot moved by -leg dP / |P| changes the impulse by dP / (1 - c),

@@ -121,3 +121,76 @@ TEST_CASE("hip_rotation: pendulum by default, true is the neutral-point rule, ba
     }
   }
 }
+
+TEST_CASE("held roll is placed across the body as it is headed", "[placement]") {
+  // The whole problem turned about the vertical by psi, heading psi: the legs come out turned by
+  // psi (the rule is the same in the body's own axes), for both placement rules.
+  const Vector3d P(0.12, -0.05, 9.0), v0(0.3, 0.15, -1.9), v_takeoff(0.31, 0.12, 1.9);
+  for (const double psi : {0.05, -0.4, 1.3}) {
+    const Eigen::Matrix3d Rz = Eigen::AngleAxisd(psi, Vector3d::UnitZ()).toRotationMatrix();
+    const Vector3d a = pendulum_leg_direction(P, v0, 0.09, 0.2, 2.0, 0.6, true, v_takeoff, 0.0);
+    const Vector3d b =
+        pendulum_leg_direction(Rz * P, Rz * v0, 0.09, 0.2, 2.0, 0.6, true, Rz * v_takeoff, psi);
+    CHECK((b - Rz * a).norm() < 1e-12);
+    const Vector3d c = free_leg_direction(P, v0, 0.09, 0.2, 0.6, true, v_takeoff, 0.0);
+    const Vector3d e = free_leg_direction(Rz * P, Rz * v0, 0.09, 0.2, 0.6, true, Rz * v_takeoff, psi);
+    CHECK((e - Rz * c).norm() < 1e-12);
+    // Across the body the foot is put along the takeoff velocity (no neutral point).
+    const Vector3d across = Rz * Vector3d::UnitY();
+    const double v_across = (Rz * v_takeoff).dot(across);
+    CHECK(b.dot(across) == Approx(-v_across / std::hypot(v_across, v_takeoff.z())).margin(1e-12));
+  }
+}
+
+TEST_CASE("legs turned apart deliver the yaw asked and no net push", "[placement]") {
+  // Three, four and six hips, symmetric and not: each leg carries Pz / n of the vertical
+  // impulse along itself, so its horizontal push is -(Pz / n) (foot - hip) / leg; the pushes'
+  // moment about the vertical must be Hz and their sum the common leg's.
+  using pronk::robot::detail::yaw_leg_directions;
+  const std::vector<std::vector<Eigen::Vector2d>> robots = {
+      {{0.15, 0.0}, {-0.08, 0.13}, {-0.08, -0.13}},
+      {{0.2, 0.1}, {0.2, -0.1}, {-0.2, 0.1}, {-0.2, -0.1}},
+      {{0.25, 0.12}, {0.25, -0.12}, {0.0, 0.15}, {0.0, -0.15}, {-0.25, 0.12}, {-0.22, -0.1}}};
+  const double leg = 0.25, Pz = 8.0;
+  const Vector3d d = Vector3d(0.05, -0.02, -1.0).normalized();
+  for (const auto& hips : robots) {
+    for (const double Hz : {0.004, -0.01}) {
+      const auto u = yaw_leg_directions(d, hips, Hz, Pz, leg, 0.6);
+      REQUIRE(u.size() == hips.size());
+      const double n = static_cast<double>(hips.size());
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      for (const auto& h : hips) centre += h / n;
+      // About the hips' centre (the parallel push has no moment there), and the turned-apart
+      // part alone about any point.
+      double moment = 0.0, moment_apart = 0.0;
+      Eigen::Vector2d sum = Eigen::Vector2d::Zero(), common = Eigen::Vector2d::Zero();
+      for (size_t i = 0; i < hips.size(); ++i) {
+        CHECK(u[i].norm() == Approx(1.0).epsilon(1e-12));
+        const Eigen::Vector2d push = -(Pz / n) * u[i].head<2>();  // (foot - hip) / leg = u
+        const Eigen::Vector2d apart = push + (Pz / n) * d.head<2>();
+        const Eigen::Vector2d lever = hips[i] - centre;
+        const Eigen::Vector2d lever_any = hips[i] + Eigen::Vector2d(0.3, -0.7);
+        moment += lever.x() * push.y() - lever.y() * push.x();
+        moment_apart += lever_any.x() * apart.y() - lever_any.y() * apart.x();
+        sum += push;
+        common += -(Pz / n) * d.head<2>();
+      }
+      CHECK(moment == Approx(Hz).margin(1e-15));
+      // With the exact strut law (each leg's vertical share Pz / n, its push along itself,
+      // horizontal -(Pz / n) u_h / |u_z|) the moment is Hz to within the small-angle error.
+      double moment_exact = 0.0;
+      for (size_t i = 0; i < hips.size(); ++i) {
+        const Eigen::Vector2d push = -(Pz / n) * u[i].head<2>() / -u[i].z();
+        const Eigen::Vector2d lever = hips[i] - centre;
+        moment_exact += lever.x() * push.y() - lever.y() * push.x();
+      }
+      CHECK(moment_exact == Approx(Hz).epsilon(0.02));
+      CHECK(moment_apart == Approx(Hz).margin(1e-15));
+      CHECK((sum - common).norm() < 1e-14);
+    }
+  }
+  // No yaw asked: the legs stay parallel.
+  for (const auto& ui : yaw_leg_directions(d, robots[1], 0.0, Pz, leg, 0.6)) {
+    CHECK((ui - d).norm() == 0.0);
+  }
+}
