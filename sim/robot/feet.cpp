@@ -44,8 +44,17 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
     }
   }
   const bool now_free = any_free();
-  if (now_free && !was_free) run_.contact_begin = t;
-  if (!now_free && was_free) data_.spring_stance = t - run_.contact_begin;
+  const double vz = body_com(model_, y).v.z();
+  if (now_free && !was_free) {
+    run_.contact_begin = t;
+    run_.contact_vz = vz;
+  }
+  // A stance is a contact that turned the CoM's fall into a rise: a foot's brief tap (a
+  // tilted landing's first foot bouncing off) is not, and must not become the stance time
+  // the next placement plans with (a 2 ms "stance" puts the feet under the hips).
+  if (!now_free && was_free && run_.contact_vz < 0.0 && vz > 0.0) {
+    data_.spring_stance = t - run_.contact_begin;
+  }
   set_actuators();
   book_work(e_before, y);
 }

@@ -40,6 +40,7 @@ struct RunMonitor {
   std::vector<Eigen::Vector2d> contact_start;
   double stride_slip = 0.0;
   double contact_begin = 0.0;  ///< free stance hips: first foot landing of this stance [s]
+  double contact_vz = 0.0;     ///< the CoM's vertical velocity then [m/s]
 
   control::BodyState body_state(const ode::Vec& y) const {
     const pr::BodyFrame& f = msys.frames(y)[model.body];
