@@ -27,7 +27,8 @@ $cells << EOD
 0.25 10 0.225 0.275 7.5 12.5 0
 0.3 10 0.275 0.32499999999999996 7.5 12.5 0
 EOD
-# boundary, row value, lowest cell with all trials stabilized (rows with one)
+# boundary, row value, lowest cell with all trials stabilized (rows with one; a blank
+# line at a row with none, where the line breaks)
 $boundary << EOD
 0.225 0 0.15
 0.225 5 0.15
