@@ -1,14 +1,23 @@
 #!/usr/bin/env python3
 """The family table: per robot designed by `pronk design` (DIR/<robot>/design.json), the
 held-out validation in the full model: stabilized, fell, apex held and hop-height error,
-duty, cost of transport, and the design's wall time.
-    scripts/family_table.py RESULTS_DIR"""
+duty, cost of transport, and the design's wall time; beside it, when NOMINAL_DIR/<robot>
+holds the same robot tuned on the nominal robot only (`pronk design --tune-nominal`), that
+design's stabilized and fell on the same perturbed trials.
+    scripts/family_table.py RESULTS_DIR [NOMINAL_DIR]"""
 import json
 import pathlib
 import sys
 
 
-def row(d: pathlib.Path) -> str:
+def nominal_cells(d: pathlib.Path) -> str:
+    if d is None or not (d / "design.json").is_file():
+        return "| - |"
+    v = json.loads((d / "design.json").read_text())["validation"]["metrics"]
+    return f"| {100 * v['stabilized']:.1f} % / {100 * v['fell']:.1f} % |"
+
+
+def row(d: pathlib.Path, nominal: pathlib.Path) -> str:
     design = json.loads((d / "design.json").read_text())
     v = design["validation"]["metrics"]
     scene = json.loads((d / "scene.json").read_text())
@@ -20,23 +29,27 @@ def row(d: pathlib.Path) -> str:
     return (f"| {d.name} | {robot} | {n} | **{100 * v['stabilized']:.1f} %** | {100 * v['fell']:.1f} % "
             f"| {100 * v['apex_held']:.1f} % | {1000 * v['hop_height_error']:.1f} mm "
             f"| {v['duty_mean']:.3f} | {v['cost_of_transport']:.2f} "
-            f"| {design['wall_time_s'] / 60:.1f} min |")
+            f"| {design['wall_time_s'] / 60:.1f} min {nominal_cells(nominal)}")
 
 
 def main() -> None:
     root = pathlib.Path(sys.argv[1])
+    nominal_root = pathlib.Path(sys.argv[2]) if len(sys.argv) > 2 else None
     dirs = sorted(p for p in root.iterdir() if (p / "design.json").is_file())
     print("# The robot family, designed by `pronk design`\n")
     print("Each robot's scene gives only its body, legs and gait (studies/scenes/family/); "
           "`pronk design` derived and ran its study with the default options. Held-out "
           "validation trials in the full model, every trial disturbed (tilt <= 10 deg, lateral "
           "offset <= 0.2 m, kick <= 0.2 m/s) and the robot perturbed (mass +-15 %, inertia "
-          "+-20 %, leg stiffness +-15 %, friction 0.6-1.2).\n")
+          "+-20 %, leg stiffness +-15 %, friction 0.6-1.2). The last column is the same robot "
+          "tuned on the nominal robot only (`--tune-nominal`), validated on the same perturbed "
+          "trials: the gap is what robust design buys.\n")
     print("| robot | body, legs, gait | trials | stabilized | fell | apex held (3 %) "
-          "| hop-height error (RMS; a fall counts its penalty, 1-2 m) | duty | cost of transport | wall time |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "| hop-height error (RMS; a fall counts its penalty, 1-2 m) | duty | cost of transport "
+          "| wall time | tuned nominal only: stabilized / fell |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for d in dirs:
-        print(row(d))
+        print(row(d, nominal_root / d.name if nominal_root else None))
 
 
 if __name__ == "__main__":
