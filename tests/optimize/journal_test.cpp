@@ -226,3 +226,12 @@ TEST_CASE("the verification sample: N distinct records, seeded, or all", "[optim
     for (long i : verification_sample(20, 10, s)) ++hits[static_cast<size_t>(i)];
   for (int h : hits) CHECK(std::abs(h - 1000) < 120);  // binomial sd ~ 22
 }
+
+TEST_CASE("a journal header whose type is not a string is bad input, not a crash", "[journal]") {
+  // The journal fuzzer's find: "type" holding an array made nlohmann throw a type_error past
+  // the reader (std::terminate in the fuzzer, a raw exit 1 in the CLI).
+  const std::string text =
+      R"({"constr":0,"tylations":0,"spectral_radius":10,"strides":0,"type":[0.25,1.0]})"
+      "\n";
+  CHECK_THROWS_AS(parse_journal(text, "fuzz.jsonl"), InputError);
+}
