@@ -406,7 +406,7 @@ std::optional<RecordedSet> read_validation(io::JsonReader& r, const json& design
 }  // namespace
 
 RecordedDesign read_design(const json& design, const std::string& path) {
-  if (!design.is_object() || design.value("type", "") != "pronk_design") {
+  if (!io::holds(design, "type", "pronk_design")) {
     throw io::InputError(
         path, "/type", "\"pronk_design\" (a design.json of pronk optimize)",
         design.is_object() && design.contains("type") ? io::describe(design["type"]) : "nothing");

@@ -141,7 +141,7 @@ void read_study_journal(JournalReader& reader, json* header,
     const long lineno = reader.line_number();
     const std::string where = "line " + std::to_string(lineno);
     if (lineno == 1) {
-      if (!(j.is_object() && j.contains("type") && j["type"] == "header"))
+      if (!io::holds(j, "type", "header"))
         throw io::InputError(reader.path(), where, "a journal header record", io::describe(j));
       *header = std::move(j);
       continue;

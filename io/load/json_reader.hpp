@@ -30,6 +30,12 @@ inline constexpr double kMaxInputMagnitude = 1e12;
 inline constexpr double kMinMass = 1e-6, kMaxMass = 1e6, kMaxGravity = 1e3;
 /// Short description of a JSON value for error messages ("string \"abc\"").
 std::string describe(const json& value);
+
+/// Whether doc is an object whose key holds exactly want (of want's type): a tag such as
+/// "type" read without nlohmann's value(), which throws when the key holds another type.
+inline bool holds(const json& doc, const char* key, const json& want) {
+  return doc.is_object() && doc.contains(key) && doc.at(key) == want;
+}
 /// Escapes a key for use in a JSON Pointer (RFC 6901).
 std::string pointer_escape(const std::string& key);
 /// The value at JSON Pointer `pointer` (RFC 6901) in `doc` (`doc` itself for ""), or nullptr

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/load/input_error.hpp"
+#include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
 #include "io/page/csv_table.hpp"
 #include "io/page/page_data.hpp"
@@ -34,7 +35,7 @@ std::string comparepage_run(const nlohmann::json& design, const std::string& fil
 nlohmann::json comparison_page_data(const std::string& dir) {
   const std::string file = dir + "/compare.json";
   const nlohmann::json meta = read_json_file(file);
-  if (!meta.is_object() || meta.value("type", "") != "pronk_comparison") {
+  if (!io::holds(meta, "type", "pronk_comparison")) {
     throw InputError(file, "/type", "\"pronk_comparison\"", "something else");
   }
   const nlohmann::json& designs = meta.value("designs", nlohmann::json());

@@ -203,7 +203,7 @@ MapJournalState read_map_journal(const std::string& path, const MapStudy& st) {
   for (json j; reader.next(&j);) {
     if (reader.line_number() > 1) {
       read_record(st, std::move(j), reader.line_number(), path, js, summaries);
-    } else if (!(j.is_object() && j.contains("type") && j["type"] == "pronk_map_journal" && j.contains("hash") && j["hash"] == st.hash)) {
+    } else if (!io::holds(j, "type", "pronk_map_journal") || !io::holds(j, "hash", st.hash)) {
       throw io::InputError(path, "/hash", "the journal of this map study (hash " + st.hash + ")",
                            j.contains("hash") ? io::describe(j.at("hash")) : "no hash");
     } else {

@@ -280,7 +280,7 @@ json map_study_scene_doc(io::JsonReader& r, const json& doc, const std::string& 
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     st->scene_file = p.lexically_normal().string();
     scene_doc = io::read_json_file(st->scene_file);
-    if (scene_doc.is_object() && scene_doc.value("type", "") == "pronk_design") {
+    if (io::holds(scene_doc, "type", "pronk_design")) {
       if (!scene_doc.contains("scene") || !scene_doc.at("scene").is_object())
         throw io::InputError(st->scene_file, "/scene", "the design's resolved scene", "nothing");
       scene_doc = json(scene_doc.at("scene"));

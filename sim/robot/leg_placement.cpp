@@ -95,13 +95,10 @@ std::vector<Vector3d> yaw_leg_directions(const Vector3d& d,
   double levers = 0.0;  // sum of |lever|^2 [m^2]
   for (const auto& h : hips) levers += (h - centre).squaredNorm();
   if (!(levers > 1e-12)) return u;
-  const double r_max = leg * std::sin(max_angle);
   for (size_t i = 0; i < hips.size(); ++i) {
     const Eigen::Vector2d lever = hips[i] - centre;
     const Eigen::Vector2d p = Hz * Eigen::Vector2d(-lever.y(), lever.x()) / levers;  // [N s]
-    Eigen::Vector2d r = leg * d.head<2>() - leg * n * p / Pz;
-    if (r.norm() > r_max) r *= r_max / r.norm();
-    u[i] = Vector3d(r.x(), r.y(), -std::sqrt(std::max(0.0, leg * leg - r.squaredNorm()))) / leg;
+    u[i] = leg_for_foot(leg * d.head<2>() - leg * n * p / Pz, leg, max_angle, false, d, 0.0);
   }
   return u;
 }
@@ -184,8 +181,7 @@ std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::
   // The pendulum rule holds the roll across the body as it is headed at touchdown and turns
   // the legs apart for the yaw asked; the neutral-point rule (the older placement, kept as it
   // was for the designs tuned with it) holds it across the world's x axis, legs parallel.
-  const double heading =
-      prs_.pendulum_placement ? std::atan2(R_td(1, 0), R_td(0, 0)) : 0.0;
+  const double heading = prs_.pendulum_placement ? std::atan2(R_td(1, 0), R_td(0, 0)) : 0.0;
   const Vector3d d =
       prs_.pendulum_placement
           ? pendulum_leg_direction(P, s.velocity, data_.spring_stance, model_.rest_length[0],
@@ -196,8 +192,8 @@ std::vector<Vector3d> RobotRun::placement(double t, const ode::Vec& y, control::
   if (prs_.pendulum_placement) {
     std::vector<Eigen::Vector2d> hips(legs_);
     for (size_t i = 0; i < legs_; ++i) hips[i] = (R_td * model_.hip[i]).head<2>();
-    u = yaw_leg_directions(d, hips, (R_td * pred.command.H_body).z(), P.z(),
-                           model_.rest_length[0], prs_.max_leg_angle);
+    u = yaw_leg_directions(d, hips, (R_td * pred.command.H_body).z(), P.z(), model_.rest_length[0],
+                           prs_.max_leg_angle);
   }
   for (auto& ui : u) ui = R_td.transpose() * ui;
   return u;

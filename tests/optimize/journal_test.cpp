@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "optimize/journal.hpp"
 #include "io/load/input_error.hpp"
+#include "optimize/journal.hpp"
 
 using nlohmann::json;
 using pronk::io::InputError;

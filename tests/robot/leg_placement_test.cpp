@@ -133,7 +133,8 @@ TEST_CASE("held roll is placed across the body as it is headed", "[placement]") 
         pendulum_leg_direction(Rz * P, Rz * v0, 0.09, 0.2, 2.0, 0.6, true, Rz * v_takeoff, psi);
     CHECK((b - Rz * a).norm() < 1e-12);
     const Vector3d c = free_leg_direction(P, v0, 0.09, 0.2, 0.6, true, v_takeoff, 0.0);
-    const Vector3d e = free_leg_direction(Rz * P, Rz * v0, 0.09, 0.2, 0.6, true, Rz * v_takeoff, psi);
+    const Vector3d e =
+        free_leg_direction(Rz * P, Rz * v0, 0.09, 0.2, 0.6, true, Rz * v_takeoff, psi);
     CHECK((e - Rz * c).norm() < 1e-12);
     // Across the body the foot is put along the takeoff velocity (no neutral point).
     const Vector3d across = Rz * Vector3d::UnitY();
