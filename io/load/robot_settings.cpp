@@ -100,6 +100,7 @@ void parse_hip_rotation(JsonReader& r, const json& node, scene::PseudoRigid* p) 
 // pseudo_rigid_to_json leaves each out at its default, add_defaulted_settings puts it back.
 json late_settings(const scene::PseudoRigid& p) {
   return {{"placement_trim_gain", p.placement_trim_gain},
+          {"attitude_trim_max", p.attitude_trim_max},
           {"actuator_gain", p.actuator_gain},
           {"attitude_sensor_bias_deg",
            {p.attitude_sensor_bias[0] * 180.0 / M_PI, p.attitude_sensor_bias[1] * 180.0 / M_PI}}};
@@ -161,6 +162,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   given->position_trim_gain = r.has("position_trim_gain");
   p.position_trim_gain = r.number_or("position_trim_gain", p.position_trim_gain, 0.0, 2.0);
   p.attitude_trim_gain = r.number_or("attitude_trim_gain", p.attitude_trim_gain, 0.0, 2.0);
+  p.attitude_trim_max = r.number_or("attitude_trim_max", p.attitude_trim_max, 0.0, 1.0);
   p.placement_trim_gain = r.number_or("placement_trim_gain", p.placement_trim_gain, 0.0, 2.0);
   p.thrust = r.choice_or("thrust", std::string(p.thrust == Thrust::kEnergy ? "energy" : "impulse"),
                          {"impulse", "energy"}) == "energy"

@@ -232,8 +232,9 @@ run::Next RobotRun::on_touchdown(double t, const ode::Vec& y) {
   }
   if (prs_.attitude_trim_gain > 0.0) {
     for (int k = 0; k < 2; ++k) {
-      data_.attitude_trim[k] = std::clamp(
-          data_.attitude_trim[k] + prs_.attitude_trim_gain * read.euler123[k], -0.2, 0.2);
+      data_.attitude_trim[k] =
+          std::clamp(data_.attitude_trim[k] + prs_.attitude_trim_gain * read.euler123[k],
+                     -prs_.attitude_trim_max, prs_.attitude_trim_max);
     }
   }
   const control::StancePlan plan =

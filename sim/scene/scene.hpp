@@ -200,10 +200,14 @@ struct PseudoRigid {
   double position_trim_gain = 0.3;
   /// Attitude feedback's integral action, per stride: at each touchdown the controller's
   /// measured roll and pitch are offset by the running sum of gain x (roll, pitch) over the
-  /// touchdowns so far (within +-0.2 rad), so a steady moment bias (the full model's hip
-  /// placement and stance feedback under a moving setpoint) that the body controller's PD
-  /// would balance with a standing tilt is learnt away; 0 = off [-].
+  /// touchdowns so far (within +-attitude_trim_max), so a steady moment bias (the full
+  /// model's hip placement and stance feedback under a moving setpoint) that the body
+  /// controller's PD would balance with a standing tilt is learnt away; 0 = off [-].
   double attitude_trim_gain = 1.0;
+  /// Anti-windup of that trim: each of roll and pitch stays within +-attitude_trim_max. The
+  /// stance feedback turns the trim into a moment stance_kp x trim, so a robot whose steady
+  /// moment bias is large against its stance stiffness needs more [rad].
+  double attitude_trim_max = 0.2;
   /// Leg placement's integral action, per stride (spring legs with hip_rotation): after each
   /// stance the horizontal impulse the placed legs missed (requested at the placement minus
   /// delivered from touchdown to apex) times this gain is added to the impulse the next

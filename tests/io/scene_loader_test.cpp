@@ -440,6 +440,10 @@ TEST_CASE("values out of range are rejected", "[io][scene][errors]") {
     doc["pseudo_rigid"]["attitude_trim_gain"] = -1;
     check_error(parse_error(doc), "/pseudo_rigid/attitude_trim_gain", "a finite number in [0, 2]",
                 "number -1");
+    doc["pseudo_rigid"]["attitude_trim_gain"] = 1;
+    doc["pseudo_rigid"]["attitude_trim_max"] = 1.5;
+    check_error(parse_error(doc), "/pseudo_rigid/attitude_trim_max", "a finite number in [0, 1]",
+                "number 1.5");
   }
   SECTION("max_strides 0") {
     doc["simulation"]["max_strides"] = 0;

@@ -121,6 +121,25 @@ TEST_CASE("pronk design: a scene with its own pulse section gets the derived pul
   CHECK(st.stages.size() == 2);
 }
 
+TEST_CASE("pronk design: the attitude trim's limit is raised unless the scene sets its own",
+          "[design]") {
+  // The limit the derived study's full model runs with, read back from the scene it resolves.
+  auto limit = [](json scene, const std::string& file) {
+    json study = derive_design_study(scene, file, "scene.json", DesignOptions{});
+    for (const auto& o : study.at("scene_overrides")) io::apply_override(scene, o);
+    return io::parse_scene(scene, file).pseudo_rigid.attitude_trim_max;
+  };
+  const json tripod = io::read_json_file(family("tripod"));  // no pseudo_rigid section
+  CHECK(limit(tripod, family("tripod")) == 0.4);
+  const std::string pr = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
+  json pr_running = io::read_json_file(pr);  // its own pseudo_rigid section, no limit
+  REQUIRE(pr_running.at("pseudo_rigid").is_object());
+  CHECK(limit(pr_running, pr) == 0.4);
+  pr_running["pseudo_rigid"]["attitude_trim_max"] = 0.25;  // the scene's own limit stays
+  CHECK(limit(pr_running, pr) == 0.25);
+  CHECK(io::parse_scene(tripod, family("tripod")).pseudo_rigid.attitude_trim_max == 0.2);
+}
+
 TEST_CASE("pronk design: --tune-nominal keeps the tuning robot nominal, not the validation",
           "[design]") {
   const json scene = io::read_json_file(family("tripod"));
