@@ -58,7 +58,8 @@ def main() -> None:
     if older:
         print(f"\n{', '.join(older)}: designed before `pronk design` raised the attitude trim's "
               "limit to 0.4 rad (their studies run at the 0.2 rad default).")
-    print("\nWall times: a 2-core machine, measured with other work running beside each design.")
+    print("\nWall times: the design's own clock on a 2-core machine, most of them with other work "
+          "running beside the design; docs/design.md gives the times measured alone.")
 
 
 if __name__ == "__main__":
