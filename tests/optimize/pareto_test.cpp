@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -179,8 +180,8 @@ TEST_CASE("Knee of hand-made fronts", "[pareto]") {
   // Convex 2-D front: distances (1 - f1 - f2) / sqrt(2) to the line through the ends are
   // 0, 0.4, 0.5, 0.4, 0 (times 1/sqrt(2)): the knee is (0.2, 0.3), index 3 here (index 0 is a
   // dominated point, index 5 a duplicate of the knee).
-  const std::vector<Objectives> convex = {{0.6, 0.6}, {0, 1},   {0.1, 0.5},
-                                          {0.2, 0.3}, {0.5, 0.1}, {0.2, 0.3}, {1, 0}};
+  const std::vector<Objectives> convex = {{0.6, 0.6}, {0, 1},     {0.1, 0.5}, {0.2, 0.3},
+                                          {0.5, 0.1}, {0.2, 0.3}, {1, 0}};
   CHECK(knee(convex) == 3);
   // Scaling and shifting each objective does not move it (normalization by ideal and nadir).
   std::vector<Objectives> scaled;
@@ -222,22 +223,34 @@ TEST_CASE("NSGA-II on ZDT1 reaches the true front's hypervolume within 1 %", "[p
   REQUIRE(r.knee >= 0);
 }
 
-TEST_CASE("NSGA-II, MOEA/D and NSPSO on Schaffer N.1 reach the analytic hypervolume",
-          "[pareto]") {
-  // Budget: population 40, 30 generations (1240 evaluations), seed 1. Over seeds 1-10 the
-  // archive's worst ratios were NSGA-II 0.9964, MOEA/D 0.9991, NSPSO 0.9982; the algorithms'
-  // own last populations (looser, asserted below) 0.986, 0.987, 0.953.
+TEST_CASE("NSGA-II, MOEA/D and NSPSO on Schaffer N.1 reach the analytic hypervolume", "[pareto]") {
+  // Budget: population 100, 50 generations (5100 evaluations), seed 1. Over seeds 1-10 the
+  // archive's worst ratios were NSGA-II 0.99968, MOEA/D 0.99980, NSPSO 0.99965, and the
+  // algorithms' own last populations (asserted looser below) 0.9950, 0.9950, 0.9833. On this
+  // one-variable problem uniform sampling of the same budget already reaches ~0.9987, so each
+  // algorithm must also leave less than half of random sampling's gap to the true front.
+  const long budget = 100 * 51;
+  std::mt19937_64 rng(7);
+  std::vector<Objectives> sampled;
+  for (long i = 0; i < budget; ++i)
+    sampled.push_back(schaffer({-10.0 + 20.0 * static_cast<double>(rng() >> 11) * 0x1.0p-53}));
+  std::vector<Objectives> sampled_front;
+  for (std::size_t i : non_dominated(sampled)) sampled_front.push_back(sampled[i]);
+  const double random_gap = 1.0 - hypervolume(sampled_front, {4.4, 4.4}) / kSchafferHv;
+  INFO("uniform sampling: ratio " << 1.0 - random_gap);
+  CHECK(random_gap > 0.0005);
+
   struct Case {
     const char* algorithm;
-    long batch_calls;        // nsga2, nspso: one per generation; moead: one per point
+    long batch_calls;         // nsga2, nspso: one per generation; moead: one per point
     double population_ratio;  // what the last population's own front reliably reaches
   };
-  for (const Case& c : {Case{"nsga2", 31, 0.98}, Case{"moead", 1201, 0.98},
-                        Case{"nspso", 31, 0.95}}) {
+  for (const Case& c :
+       {Case{"nsga2", 51, 0.99}, Case{"moead", 5001, 0.99}, Case{"nspso", 51, 0.98}}) {
     MooOptions o;
     o.algorithm = c.algorithm;
-    o.population = 40;
-    o.generations = 30;
+    o.population = 100;
+    o.generations = 50;
     o.seed = 1;
     o.reference = {4.4, 4.4};
     const MooResult r = run(serial(schaffer), {-10.0}, {10.0}, 2, o);
@@ -245,14 +258,15 @@ TEST_CASE("NSGA-II, MOEA/D and NSPSO on Schaffer N.1 reach the analytic hypervol
     const double own = population_hv(r) / kSchafferHv;
     INFO(c.algorithm << ": archive ratio " << ratio << ", population ratio " << own);
     CHECK(r.batch_calls == c.batch_calls);
-    CHECK(r.evaluations.size() == 1240);
-    CHECK(ratio >= 0.99);
+    CHECK(static_cast<long>(r.evaluations.size()) == budget);
+    CHECK(ratio >= 0.999);
     CHECK(ratio <= 1.0);
+    CHECK(1.0 - ratio < 0.5 * random_gap);
     CHECK(own >= c.population_ratio);
     // The knee of the front f2 = (sqrt(f1) - 2)^2 normalized to [0, 1]^2 is where the slope
     // is -1 (f1 = f2 = 1, x = 1); allow the front's sampling.
     REQUIRE(r.knee >= 0);
-    CHECK(r.front_x[static_cast<std::size_t>(r.knee)][0] == Approx(1.0).margin(0.1));
+    CHECK(r.front_x[static_cast<std::size_t>(r.knee)][0] == Approx(1.0).margin(0.05));
   }
 }
 
@@ -266,10 +280,11 @@ TEST_CASE("Multi-objective runs are deterministic: repeated, threaded, resumed",
     o.seed = 42;  // the reference point from the rule (first population)
     const std::vector<double> lo(30, 0.0), hi(30, 1.0);
     std::vector<long> observed;
-    const MooResult a = run(serial(zdt1), lo, hi, 2, o, [&](const MooGeneration& g, const auto& all) {
-      observed.push_back(g.index);
-      CHECK(static_cast<long>(all.size()) == g.evaluations);
-    });
+    const MooResult a =
+        run(serial(zdt1), lo, hi, 2, o, [&](const MooGeneration& g, const auto& all) {
+          observed.push_back(g.index);
+          CHECK(static_cast<long>(all.size()) == g.evaluations);
+        });
     CHECK(observed.size() == 16);
     CHECK(a.evaluations.size() == 24 * 16);
     require_identical(a, run(serial(zdt1), lo, hi, 2, o));
