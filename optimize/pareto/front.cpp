@@ -78,6 +78,7 @@ Eigen::VectorXd extreme_plane(const std::vector<Objectives>& g) {
 }  // namespace
 
 std::vector<std::size_t> non_dominated(const std::vector<Objectives>& points) {
+  check_points(points, "non_dominated");
   std::vector<std::size_t> front;
   extend_front(points, 0, &front);
   return front;

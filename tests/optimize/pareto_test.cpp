@@ -138,7 +138,9 @@ TEST_CASE("Non-dominated filter and sort of a hand-made set", "[pareto]") {
   std::vector<std::size_t> front = non_dominated(pts);
   extend_front(more, pts.size(), &front);
   CHECK(front == std::vector<std::size_t>{8});
-  CHECK_THROWS_WITH(non_dominated({{1, NAN}}), "extend_front: point 0 has a NaN objective");
+  CHECK_THROWS_WITH(non_dominated({{1, NAN}}), "non_dominated: point 0 has a NaN objective");
+  CHECK_THROWS_WITH(non_dominated({{1, 2}, {1, 2, 3}}),
+                    "non_dominated: point 1 has 3 objectives, point 0 has 2");
 }
 
 TEST_CASE("Hypervolume of hand-computable sets", "[pareto]") {
