@@ -220,9 +220,15 @@ TEST_CASE("NSGA-II on ZDT1 reaches the true front's hypervolume within 1 %", "[p
   // The archive of every evaluation only grows: hypervolume never falls.
   for (std::size_t g = 1; g < r.hypervolumes.size(); ++g)
     CHECK(r.hypervolumes[g] >= r.hypervolumes[g - 1]);
-  // The final front: non-dominated, on ZDT1's front f2 = 1 - sqrt(f1) up to g - 1.
+  // The final front: non-dominated, and nowhere below the true front (f2 = g - sqrt(f1 g)
+  // grows with g >= 1, so f2 >= 1 - sqrt(f1)).
   CHECK(non_dominated(r.front_f).size() == r.front_f.size());
+  for (const Objectives& f : r.front_f) CHECK(f[1] >= 1.0 - std::sqrt(f[0]) - 1e-12);
+  // Knee: normalized to [0, 1]^2 the true front is f2 = 1 - sqrt(f1), whose distance below
+  // the line f1 + f2 = 1 is (sqrt(f1) - f1) / sqrt(2), largest at f1 = 1/4.
   REQUIRE(r.knee >= 0);
+  INFO("knee f1 = " << r.front_f[static_cast<std::size_t>(r.knee)][0]);
+  CHECK(r.front_f[static_cast<std::size_t>(r.knee)][0] == Approx(0.25).margin(0.02));
 }
 
 TEST_CASE("NSGA-II, MOEA/D and NSPSO on Schaffer N.1 reach the analytic hypervolume", "[pareto]") {
