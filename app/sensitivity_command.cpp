@@ -41,6 +41,7 @@ sens::DesignSensitivityOptions options_of(const SensitivityArgs& a) {
                          std::to_string(a.default_range));
   }
   for (const auto& r : a.ranges) o.ranges.push_back(sens::parse_range_option(r));
+  o.only = a.inputs;
   o.threads = thread_count(a.threads);
   o.progress = optimize::progress_style(a.quiet);
   return o;
@@ -76,6 +77,10 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityArgs& args) {
                   "POINTER=REL: the relative range of an input (a tuned parameter's pointer or a "
                   "physical number of the resolved scene, added as an input); repeatable")
       ->type_name("POINTER=REL");
+  cmd->add_option("--inputs", args.inputs,
+                  "POINTER ...: only these inputs (a tuned parameter's pointer, or a physical "
+                  "number of the resolved scene; default: every tuned parameter and the default "
+                  "physical numbers)");
   cmd->add_option("--chart", args.chart, "The output the charts and summary show (default cost)");
   cmd->add_option("--seed", args.seed, "Seed of the Sobol sampling and bootstrap (default 1)");
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")

@@ -22,6 +22,7 @@ struct SensitivityArgs {
   long bootstrap = 200;
   double default_range = 0.1;
   std::vector<std::string> ranges;  ///< POINTER=REL
+  std::vector<std::string> inputs;  ///< --inputs: only these (pointers)
   std::string chart = "cost";
   unsigned long long seed = 1;
   int threads = 0;  ///< 0: all hardware threads

@@ -153,6 +153,16 @@ std::vector<SensitivityInput> collect_inputs(const EvaluatorConfig& cfg,
     it->range = rel;
     given.push_back(pointer);
   }
+  if (!opt.only.empty()) {
+    for (const std::string& pointer : opt.only) {
+      if (find(pointer) != inputs.end()) continue;
+      inputs.push_back(physical_input(doc, unused, pointer, pointer.substr(1), "--inputs"));
+      inputs.back().range = opt.default_range;
+    }
+    std::vector<SensitivityInput> kept;
+    for (const std::string& pointer : opt.only) kept.push_back(*find(pointer));
+    inputs = std::move(kept);
+  }
   if (find(kInertia[0]) != inputs.end() || find(kInertia[1]) != inputs.end() ||
       find(kInertia[2]) != inputs.end()) {
     fit_inertia_ranges(doc, inputs, given);
@@ -343,6 +353,21 @@ void DesignSensitivityOptions::validate() const {
   for (const auto& [pointer, rel] : ranges) {
     if (!(rel > 0.0 && rel < 1.0)) {
       throw io::InputError("--range", pointer, "a relative range in (0, 1), e.g. 0.1", num(rel));
+    }
+  }
+  for (size_t i = 0; i < only.size(); ++i) {
+    if (only[i].empty() || only[i][0] != '/') {
+      throw io::InputError("--inputs", "", "a JSON Pointer, e.g. /body/mass", "\"" + only[i] + "\"");
+    }
+    if (std::find(only.begin(), only.begin() + static_cast<long>(i), only[i]) !=
+        only.begin() + static_cast<long>(i)) {
+      throw io::InputError("--inputs", only[i], "each input once", "it twice");
+    }
+  }
+  for (const auto& r : ranges) {
+    if (!only.empty() && std::find(only.begin(), only.end(), r.first) == only.end()) {
+      throw io::InputError("--range", r.first, "one of the --inputs",
+                           "a pointer --inputs leaves out");
     }
   }
   if (model && *model != "impulse" && *model != "pulse" && *model != "pseudo_rigid") {

@@ -46,6 +46,9 @@ struct DesignSensitivityOptions {
   double default_range = 0.1;
   /// --range POINTER=REL: the range of an input, or a physical number added as an input.
   std::vector<std::pair<std::string, double>> ranges;
+  /// --inputs: only these inputs (pointers: a tuned parameter's, or a physical number of the
+  /// resolved scene, added with the default range); empty: every default input.
+  std::vector<std::string> only;
   int threads = 1;
   /// Where the evaluations' scenario runs go instead of the threads (MPI ranks); the numbers
   /// are the same either way.

@@ -159,6 +159,12 @@ TEST_CASE("sensitivity: bad input exits 2 naming the option or the pointer", "[c
                   "--range: /pseudo_rigid/leg_stiffness: expected a number the model uses");
   check_bad_input(run({"--range", "/body/inertia_tensor/2/2=0.5"}),
                   "--range: /body/inertia_tensor: expected ranges of the principal moments");
+  check_bad_input(run({"--inputs", "/body/nothing", "--samples", "0"}),
+                  "--inputs: /body/nothing: expected a pointer to a number of the scene");
+  check_bad_input(run({"--inputs", "/body/mass", "/body/mass"}),
+                  "--inputs: /body/mass: expected each input once");
+  check_bad_input(run({"--inputs", "/body/mass", "--range", "/body/inertia_tensor/0/0=0.01"}),
+                  "--range: /body/inertia_tensor/0/0: expected one of the --inputs");
   check_bad_input(run({"--local-step", "0"}), "--local-step: /: expected a relative step");
   check_bad_input(run({"--samples", "1"}), "--samples: /: expected at least 2 base samples");
   check_bad_input(run({"--chart", "nope", "--samples", "0"}), "--chart: /: expected an output");
