@@ -9,8 +9,10 @@ src=$1 build=$2 python=$3
 work=$build/pip-install-test
 rm -rf "$work" && mkdir -p "$work"
 "$python" -m venv --system-site-packages "$work/venv"
-# Offline, as on a machine without an index (this one may point pip at local wheels).
-env -u PIP_FIND_LINKS PRONK_BUILD_DIR="$build" PIP_NO_CACHE_DIR=1 \
+# Offline, as on a machine without an index (this one may point pip at local wheels). The
+# module as this tree built it (PRONK_PREBUILT): a test never rebuilds the tree it tests (a
+# stale tree rebuilt mid-suite would hand the other tests a module of another commit).
+env -u PIP_FIND_LINKS PRONK_BUILD_DIR="$build" PRONK_PREBUILT=1 PIP_NO_CACHE_DIR=1 \
   "$work/venv/bin/pip" install --no-build-isolation --no-index "$src" > "$work/pip.log" 2>&1 ||
   { cat "$work/pip.log"; exit 1; }
 cd "$work"  # not the source tree: `import pronk` must find the installed package
