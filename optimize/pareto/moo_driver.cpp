@@ -163,6 +163,37 @@ void record(const pagmo::population& pop, long index, const Evaluator& e,
   r->generations.push_back(std::move(g));
 }
 
+/// The first population: pagmo's (uniform from the seed, one batch), or with
+/// `initial_points` first, then uniform draws from the same seed, evaluated as one batch.
+pagmo::population first_population(const pagmo::problem& problem, const pagmo::bfe& batch,
+                                   Evaluator& e, const MooOptions& options, unsigned seed) {
+  const auto size = static_cast<pagmo::pop_size_t>(options.population);
+  if (options.initial_points.empty()) return pagmo::population{problem, batch, size, seed};
+  pagmo::population pop{problem, 0u, seed};
+  std::vector<Point> xs = options.initial_points;
+  while (xs.size() < size) xs.push_back(pop.random_decision_vector());
+  const std::vector<Objectives> fs = e.evaluate(xs);
+  for (std::size_t i = 0; i < xs.size(); ++i) pop.push_back(xs[i], fs[i]);
+  return pop;
+}
+
+void check_initial_points(const MooOptions& options, const std::vector<double>& lower,
+                          const std::vector<double>& upper) {
+  if (static_cast<long>(options.initial_points.size()) > options.population)
+    throw std::invalid_argument("initial points: " + std::to_string(options.initial_points.size()) +
+                                ": expected at most the population, " +
+                                std::to_string(options.population));
+  for (std::size_t k = 0; k < options.initial_points.size(); ++k) {
+    const Point& x = options.initial_points[k];
+    bool inside = x.size() == lower.size();
+    for (std::size_t j = 0; inside && j < x.size(); ++j)
+      inside = x[j] >= lower[j] && x[j] <= upper[j];
+    if (!inside)
+      throw std::invalid_argument("initial point " + std::to_string(k) +
+                                  ": expected a point of the box's dimension inside it");
+  }
+}
+
 }  // namespace
 
 MooResult run(const BatchFunction& f, const std::vector<double>& lower,
@@ -175,13 +206,13 @@ MooResult run(const BatchFunction& f, const std::vector<double>& lower,
     throw std::invalid_argument("invalid options: " + text);
   }
   check_bounds(lower, upper);
+  check_initial_points(options, lower, upper);
   const auto nobj = static_cast<std::size_t>(objectives);
   const auto [population_seed, algorithm_seed] = pagmo_seeds(options.seed);
   Evaluator e(f, nobj, recorded);
   const pagmo::problem problem{MooProblem(&e, lower, upper, nobj)};
   const pagmo::bfe batch{MooBatchEvaluator(&e)};
-  pagmo::population pop{problem, batch, static_cast<pagmo::pop_size_t>(options.population),
-                        population_seed};
+  pagmo::population pop = first_population(problem, batch, e, options, population_seed);
 
   MooResult r;
   r.reference = options.reference.empty() ? reference_point(pop.get_f()) : options.reference;

@@ -41,6 +41,9 @@ struct MooOptions {
   /// The hypervolume reference point, one value per objective; empty: reference_point()
   /// (front.hpp) of the first population, fixed for the whole run.
   std::vector<double> reference;
+  /// Points the first population starts with (a known design, for example), the rest of it
+  /// drawn uniformly from the seed as usual; at most `population`, each inside the box.
+  std::vector<std::vector<double>> initial_points;
 
   /// Every problem found, each "field: value: rule" (field "algorithm", "population",
   /// "generations", "objectives", "reference" or "options/NAME"); empty when the options
