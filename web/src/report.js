@@ -8,6 +8,7 @@ import { runScene, installTestHook } from './runscene.js';
 import { Player } from './player.js';
 import { mapReport } from './mapreport.js';
 import { compareReport } from './comparereport.js';
+import { paretoReport } from './paretoreport.js';
 
 const test = { historyPoints: 0 };
 
@@ -194,8 +195,10 @@ function stagedReport(box, D) {
 
 function main() {
   const D = pageData();
-  const kinds = { map: 'robustness map', staged: 'staged study', compare: 'comparison of designs' };
+  const kinds = { map: 'robustness map', staged: 'staged study', compare: 'comparison of designs',
+    pareto: 'multi-objective study: the Pareto front' };
   const name = D.kind === 'map' ? D.summary.name
+    : D.kind === 'pareto' ? D.pareto.name
     : D.kind === 'compare' ? D.comparison.designs.map((d) => d.label).join(' · ')
       : D.design.staged_study ?? D.design.study;
   document.title = `${name} · pronk report`;
@@ -206,7 +209,11 @@ function main() {
   app.append(box);
   let played = null;
   let extra = { historyPoints: () => test.historyPoints };
-  if (D.kind === 'compare') {
+  if (D.kind === 'pareto') {
+    const r = paretoReport(box, D);
+    played = r.played();
+    extra = { ...extra, ...r.extra };
+  } else if (D.kind === 'compare') {
     const r = compareReport(box, D);
     played = r.played;
     extra = { ...extra, ...r.extra };
