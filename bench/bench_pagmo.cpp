@@ -27,9 +27,12 @@
 #include "optimize/optimizer.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
+#include "bench/bench_problems.hpp"
 
 using namespace pronk::optimize;
 using pronk::app::bench::median;
+using pronk::bench::full_model_problem;
+using pronk::bench::study2_problem;
 
 namespace {
 
@@ -66,38 +69,6 @@ struct Points final : EvaluationObserver {
     xs.push_back(x);
   }
 };
-
-/// Study 2 with pagmo's `algorithm`, `population` per generation, `generations` of them.
-Study study2_problem(const std::string& algorithm, int population, int generations) {
-  return load_study(std::string(PRONK_SOURCE_DIR) + "/studies/study2_pagmo_cmaes.json",
-                    {"/optimizer/algorithm=" + algorithm,
-                     "/optimizer/options={\"population\": " + std::to_string(population) + "}",
-                     "/optimizer/max_evaluations=" + std::to_string(population * generations)});
-}
-
-/// Study 3's full-model stage, started where its committed pulse stage ended
-/// (results/study3_full_model_running/design.json), tuned by pagmo, on 8 of its trials cut
-/// to 2 s (an evaluation costs about 0.4 s of one core instead of 5.6 s).
-Study full_model_problem(const std::string& algorithm, int population, int generations) {
-  const std::string dir = std::string(PRONK_SOURCE_DIR) + "/studies/";
-  const std::string file = dir + "study3_full_model_running.json";
-  std::ifstream in(file);
-  nlohmann::json doc = nlohmann::json::parse(in);
-  nlohmann::json& stage = doc.at("stages").at(1);
-  stage["optimizer"] = {{"library", "pagmo"},
-                        {"algorithm", algorithm},
-                        {"max_evaluations", population * generations},
-                        {"seed", 3},
-                        {"options", {{"population", population}}}};
-  stage["scenarios"] = doc.at("scenarios");
-  stage["scenarios"]["duration"] = 2.0;
-  stage["scenarios"]["random"]["count"] = 8;
-  std::ifstream recorded(std::string(PRONK_SOURCE_DIR) +
-                         "/results/study3_full_model_running/design.json");
-  const std::map<std::string, double> pulse_stage =
-      nlohmann::json::parse(recorded).at("stages").at(0).at("parameters");
-  return stage_study(parse_staged_study(doc, file, dir), 1, pulse_stage);
-}
 
 }  // namespace
 
