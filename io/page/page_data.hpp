@@ -2,8 +2,9 @@
 // (trajectory.csv, strides.csv, optional feet.csv and energy.csv of the full model), a
 // mechanism run (nodes.csv, bodies.csv, energy.csv), a study (history.csv, design.json,
 // initial/ and tuned/ runs), a staged study (stages/*/) or a map (cells.csv, boundary.csv,
-// summary.json, playback.json) or a comparison of designs (compare.json, compare.csv,
-// trials.csv, runs/*/). Missing or damaged files are InputErrors naming the file.
+// summary.json, playback.json), a comparison of designs (compare.json, compare.csv,
+// trials.csv, runs/*/) or a multi-objective study (pareto.json, journal.jsonl, front/*/).
+// Missing or damaged files are InputErrors naming the file.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace pronk::io::page {
 
-enum class DirKind { kRobotRun, kMechanismRun, kStudy, kStagedStudy, kMap, kComparison };
+enum class DirKind { kRobotRun, kMechanismRun, kStudy, kStagedStudy, kMap, kComparison, kPareto };
 
 /// What `dir` holds. InputError when it is not a directory or holds none of the above.
 DirKind classify_directory(const std::string& dir);
@@ -31,6 +32,10 @@ nlohmann::json run_page_data(const std::string& dir, long max_cells = kRunPageCe
 /// The page data of a comparison directory (`pronk compare`): its designs, metrics and
 /// trials, and every design's playback run.
 nlohmann::json comparison_page_data(const std::string& dir);
+
+/// The page data of a multi-objective study directory (pareto.json, journal.jsonl, and each
+/// front design's playback run front/<k>/ when written).
+nlohmann::json pareto_page_data(const std::string& dir);
 
 /// The page data of any directory classify_directory() accepts.
 nlohmann::json page_data(const std::string& dir, DirKind kind);

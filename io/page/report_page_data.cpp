@@ -106,11 +106,12 @@ DirKind classify_directory(const std::string& dir) {
   }
   if (has("cells.csv")) return DirKind::kMap;  // a map has a journal.jsonl too
   if (has("compare.json")) return DirKind::kComparison;
+  if (has("pareto.json")) return DirKind::kPareto;
   if (has("stages") && has("design.json")) return DirKind::kStagedStudy;
   if (has("history.csv") || has("journal.jsonl")) return DirKind::kStudy;
   throw InputError(dir, "",
                    "a run, study, map or comparison directory written by pronk (trajectory.csv, "
-                   "nodes.csv, history.csv, stages/, cells.csv or compare.json)",
+                   "nodes.csv, history.csv, stages/, cells.csv, compare.json or pareto.json)",
                    "none of them");
 }
 
@@ -135,6 +136,8 @@ nlohmann::json page_data(const std::string& dir, DirKind kind) {
         return reportpage_map(dir);
       case DirKind::kComparison:
         return comparison_page_data(dir);
+      case DirKind::kPareto:
+        return pareto_page_data(dir);
     }
   } catch (const nlohmann::json::exception& e) {
     // A file of the right name whose content is not what pronk writes (a wrong type).
