@@ -342,6 +342,12 @@ io::InputError moo_error(const std::string& file, const std::string& err, bool m
   if (field == "objectives") pointer = multi_form ? "/objectives" : "/objective";
   if (colon == std::string::npos)
     return io::InputError(file, pointer, "valid multi-objective options", err);
+  if (field == "objectives") {
+    const std::size_t end = err.find(": ", colon + 2);
+    return io::InputError(file, pointer,
+                          "at least 2 objectives (a multi-objective algorithm needs at least 2)",
+                          err.substr(colon + 2, end == std::string::npos ? end : end - colon - 2));
+  }
   std::size_t rule = err.find(": expected ", colon);
   std::size_t skip = 11;
   if (rule == std::string::npos) {  // "field: value: rule" with a rule that is no "expected ..."
