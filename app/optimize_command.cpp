@@ -19,6 +19,7 @@
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/moo_study.hpp"
 #include "optimize/mpi/evaluation_farm.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
@@ -134,7 +135,34 @@ LoadedStudy load_any_study(const OptimizeArgs& args) {
   return l;
 }
 
+// A multi-objective study: pareto.csv and pareto.json (docs/pareto.md).
+int run_multi_objective(const OptimizeArgs& args, const optimize::Study& study,
+                        optimize::JobFarm* farm) {
+  const optimize::StudyRunOptions opt = run_options(args, farm);
+  const optimize::MooStudyOutcome o = optimize::run_moo_study(study, opt);
+  std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet) {
+    const std::string workers = farm ? farm->describe() : threads_text(opt.threads);
+    if (o.stopped) {
+      std::printf("%s: stopped after %s (resume with --resume)\n", study.name.c_str(),
+                  run::count_text(o.evaluations, "evaluation").c_str());
+    } else {
+      std::printf("%s: pagmo %s, %s (%ld replayed), %ld feasible, %.1f s, %s\n",
+                  study.name.c_str(), study.moo->algorithm.c_str(),
+                  run::count_text(o.evaluations, "evaluation").c_str(), o.replayed, o.feasible,
+                  o.wall_time, workers.c_str());
+      std::printf("  front: %s, hypervolume %.6g (first population %.6g), knee %ld\n",
+                  run::count_text(static_cast<long>(o.front.size()), "design").c_str(),
+                  o.front_hypervolume,
+                  o.result.hypervolumes.empty() ? 0.0 : o.result.hypervolumes.front(), o.knee);
+      std::printf("  results: %s/ (pareto.csv, pareto.json, summary.md)\n", o.out_dir.c_str());
+    }
+  }
+  return o.stopped ? 1 : 0;
+}
+
 int run_single(const OptimizeArgs& args, const optimize::Study& study, optimize::JobFarm* farm) {
+  if (study.moo) return run_multi_objective(args, study, farm);
   const optimize::StudyRunOptions opt = run_options(args, farm);
   const optimize::StudyOutcome o = optimize::run_study(study, opt);
   std::signal(SIGINT, SIG_DFL);

@@ -8,6 +8,7 @@
 #include "app/optimize_command.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/moo_study.hpp"
 #include "optimize/reproduce.hpp"
 #include "sim/run/count_text.hpp"
 
@@ -96,8 +97,18 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args) {
       "Re-simulate a tuned design (design.json) and compare (a) every trial's decisions\n"
       "(fell, stabilized, apex held), which must be identical, and (b) every recorded value:\n"
       "bit-identical on the recording build (commit, compiler and flags), within the\n"
-      "tolerance the design records for it on another build, or within --rtol.");
-  cmd->add_option("design", args.design_path, "design.json written by pronk optimize")->required();
+      "tolerance the design records for it on another build, or within --rtol.\n"
+      "With --front-index K the file is a pareto.json (a multi-objective study) and front\n"
+      "design K is reproduced: bit-identical on the recording build, else within --rtol\n"
+      "(default 1e-6: front designs record no tolerances of their own).");
+  cmd->add_option("design", args.design_path,
+                  "design.json written by pronk optimize (pareto.json with --front-index)")
+      ->required();
+  cmd->add_option("--front-index", args.front_index,
+                  "Reproduce design K of a pareto.json's front (its \"index\", the first "
+                  "column of pareto.csv)")
+      ->type_name("K")
+      ->check(CLI::Range(0L, 100000000L));
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--rtol", args.rtol,
@@ -120,7 +131,11 @@ int run_reproduce(const ReproduceArgs& args) {
   opt.scenarios_only = args.scenarios_only;
   opt.validate();  // before reading the design: a bad option is the first error
   const nlohmann::json design = io::read_json_file(args.design_path);
-  const optimize::ReproduceReport rep = optimize::reproduce_design(design, args.design_path, opt);
+  const optimize::ReproduceReport rep =
+      args.front_index >= 0
+          ? optimize::reproduce_front_design(design, args.design_path, args.front_index, opt)
+          : optimize::reproduce_design(design, args.design_path, opt);
+  if (args.front_index >= 0) std::printf("front design %ld of:\n", args.front_index);
   std::printf("reproducing %s\n  recorded by: %s\n  this build:  %s\n", args.design_path.c_str(),
               rep.recorded_build.c_str(), rep.this_build.c_str());
   if (rep.validation_skipped) {

@@ -15,6 +15,7 @@ struct ReproduceArgs {
   std::string rtol;  ///< as given ("" when not): a plain relative comparison, not the design's
   bool strict = false;
   bool scenarios_only = false;
+  long front_index = -1;  ///< >= 0: the file is a pareto.json, reproduce this front design
 };
 
 CLI::App* add_reproduce_command(CLI::App& app, ReproduceArgs& args);

@@ -127,6 +127,7 @@ bool Evaluator::bind(const std::vector<double>& unit, Evaluation& ev, scene::Sce
     ev.ok = false;
     ev.failure = std::move(why);
     ev.cost = config_.failure_cost;
+    ev.objectives.assign(config_.objectives.size(), config_.failure_cost);
     ev.constraints.assign(nc, config_.failure_cost);
     return false;
   };
@@ -175,6 +176,7 @@ void Evaluator::finish(Evaluation& ev, const scene::Scene& base,
       ev.ok = false;
       ev.failure = "internal error: " + j.error;
       ev.cost = config_.failure_cost;
+      ev.objectives.assign(config_.objectives.size(), config_.failure_cost);
       ev.constraints.assign(config_.constraints.size(), config_.failure_cost);
       return;
     }
@@ -208,15 +210,27 @@ void Evaluator::finish(Evaluation& ev, const scene::Scene& base,
     ev.aggregated[std::string(to_string(t.how)) + "(" + t.metric + ")"] = a;
     ev.cost += t.weight * a;
   }
+  bool finite = std::isfinite(ev.cost);
+  for (const auto& o : config_.objectives) {
+    double v = 0.0;
+    for (const auto& t : o.terms) {
+      const double a = aggregate(column(t.metric), t.how, t.alpha);
+      ev.aggregated[std::string(to_string(t.how)) + "(" + t.metric + ")"] = a;
+      v += t.weight * a;
+    }
+    ev.objectives.push_back(v);
+    finite = finite && std::isfinite(v);
+  }
   for (const auto& c : config_.constraints) {
     const double a = aggregate(column(c.metric), c.how, c.alpha);
     ev.aggregated[std::string(to_string(c.how)) + "(" + c.metric + ")"] = a;
     ev.constraints.push_back(c.has_max ? a - c.max : c.min - a);
   }
-  if (!std::isfinite(ev.cost)) {
+  if (!finite) {
     ev.ok = false;
     ev.failure = "non-finite cost";
     ev.cost = config_.failure_cost;
+    ev.objectives.assign(config_.objectives.size(), config_.failure_cost);
     ev.constraints.assign(config_.constraints.size(), config_.failure_cost);
   }
 }

@@ -21,13 +21,22 @@
 
 namespace pronk::optimize {
 
+/// One objective of a multi-objective study: a name and its weighted terms (summed as the
+/// single "objective" of other studies is).
+struct NamedObjective {
+  std::string name;
+  std::vector<ObjectiveTerm> terms;
+};
+
 /// Everything an evaluation depends on (immutable once built).
 struct EvaluatorConfig {
   nlohmann::json scene_doc;          ///< the scene document parameters are bound into
   std::string scene_file = "scene";  ///< names the scene in error messages
   std::vector<Parameter> parameters;
   ScenarioSet scenarios;
-  std::vector<ObjectiveTerm> objective;
+  std::vector<ObjectiveTerm> objective;  ///< empty in a multi-objective study (cost 0)
+  /// A multi-objective study's objectives (docs/pareto.md), each minimized; empty otherwise.
+  std::vector<NamedObjective> objectives;
   std::vector<ConstraintSpec> constraints;  ///< each has exactly one of max / min
   bool stability = true;                    ///< compute the spectral radius of the stride map
   double fall_penalty = 1.0;  ///< error metrics of a fallen run are at least this [m or rad]
@@ -63,6 +72,9 @@ struct Evaluation {
   std::vector<double> unit;    ///< optimizer coordinates
   std::vector<double> values;  ///< physical parameter values
   double cost = 0.0;
+  /// One value per EvaluatorConfig::objectives (failure_cost each when !ok); empty in a
+  /// single-objective study.
+  std::vector<double> objectives;
   std::vector<double> constraints;  ///< g_j <= 0 feasible
   MetricMap aggregated;  ///< mean of every metric, plus every objective/constraint aggregate
   std::vector<ScenarioOutcome> scenarios;

@@ -128,6 +128,7 @@ JournalRecord evaluation_record(const json& j, long line_number) {
   r.result.cost = j.at("cost").get<double>();
   r.result.constraints = j.at("constraints").get<std::vector<double>>();
   r.result.failure = j.value("failure", "");
+  if (j.contains("objectives")) r.objectives = j.at("objectives").get<std::vector<double>>();
   r.line = j;
   r.line_number = line_number;
   return r;
@@ -270,6 +271,7 @@ json journal_record(long index, const char* purpose, const Evaluation& e,
               {"simulations", e.simulations},
               {"strides", e.strides}};
   if (!e.ok) rec["failure"] = e.failure;
+  if (!e.objectives.empty()) rec["objectives"] = e.objectives;
   return rec;
 }
 

@@ -85,6 +85,8 @@ struct JournalRecord {
   std::string purpose;    ///< "objective" or "gradient"
   std::vector<double> x;  ///< optimizer coordinates
   ProblemEvaluation result;
+  /// A multi-objective study's objective values ("objectives"); empty otherwise.
+  std::vector<double> objectives;
   nlohmann::json line;   ///< the whole record as read
   long line_number = 0;  ///< 1-based line of the journal file
 };
@@ -133,7 +135,8 @@ class JournalWriter {
   double last_sync_ = 0.0;
 };
 
-/// One journal line for an evaluation.
+/// One journal line for an evaluation (with "objectives" when the evaluation has them:
+/// multi-objective studies only, so other journals keep their bytes).
 nlohmann::json journal_record(long index, const char* purpose, const Evaluation& e,
                               const std::vector<std::string>& names);
 

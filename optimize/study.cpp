@@ -224,20 +224,54 @@ void parse_study_parameters(io::JsonReader& r, const scene::Scene& scene0, const
   io::parse_scene(ec->scene_doc, ec->scene_file);
 }
 
+ObjectiveTerm parse_objective_term(io::JsonReader& t) {
+  ObjectiveTerm term;
+  term.metric = metric_of(t);
+  term.weight = t.number_or("weight", 1.0, -1e9, 1e9);
+  term.how = parse_aggregate(t, "mean");
+  term.alpha = t.number_or("alpha", 0.2, 1e-6, 1.0);
+  t.finish();
+  return term;
+}
+
+// A multi-objective study's "objectives": [{"name", "terms": [terms as in "objective"]}].
+void parse_study_objectives(io::JsonReader& r, EvaluatorConfig* ec) {
+  if (r.has("objective")) {
+    throw r.error("objective",
+                  "no \"objective\" beside \"objectives\" (a multi-objective study lists "
+                  "each objective's terms under \"objectives\")",
+                  "both");
+  }
+  r.optional("objective");
+  for (io::JsonReader o : r.object_array("objectives")) {
+    NamedObjective no;
+    no.name = o.string_or("name", "");
+    if (no.name.empty()) throw o.error("name", "an objective name", "nothing");
+    for (const auto& other : ec->objectives) {
+      if (other.name == no.name)
+        throw o.error("name", "distinct objective names", "\"" + no.name + "\" twice");
+    }
+    for (io::JsonReader t : o.object_array("terms")) no.terms.push_back(parse_objective_term(t));
+    if (no.terms.empty()) throw o.error("terms", "at least one objective term", "an empty list");
+    o.finish();
+    ec->objectives.push_back(std::move(no));
+  }
+  if (ec->objectives.empty())
+    throw r.error("objectives", "at least one objective", "an empty list");
+}
+
 // Objective terms and constraints, their metrics checked against the study's model.
 void parse_study_objective(io::JsonReader& r, const std::string& file, scene::ModelKind model,
                            EvaluatorConfig* ec) {
-  for (io::JsonReader t : r.object_array("objective")) {
-    ObjectiveTerm term;
-    term.metric = metric_of(t);
-    term.weight = t.number_or("weight", 1.0, -1e9, 1e9);
-    term.how = parse_aggregate(t, "mean");
-    term.alpha = t.number_or("alpha", 0.2, 1e-6, 1.0);
-    t.finish();
-    ec->objective.push_back(term);
+  if (r.has("objectives")) {
+    parse_study_objectives(r, ec);
+  } else {
+    r.optional("objectives");
+    for (io::JsonReader t : r.object_array("objective"))
+      ec->objective.push_back(parse_objective_term(t));
+    if (ec->objective.empty())
+      throw r.error("objective", "at least one objective term", "an empty list");
   }
-  if (ec->objective.empty())
-    throw r.error("objective", "at least one objective term", "an empty list");
   if (r.has("constraints")) {
     for (io::JsonReader c : r.object_array("constraints")) {
       ConstraintSpec cs;
@@ -267,6 +301,12 @@ void parse_study_objective(io::JsonReader& r, const std::string& file, scene::Mo
   };
   for (size_t i = 0; i < ec->objective.size(); ++i)
     check_metric("/objective/" + std::to_string(i) + "/metric", ec->objective[i].metric);
+  for (size_t i = 0; i < ec->objectives.size(); ++i) {
+    for (size_t k = 0; k < ec->objectives[i].terms.size(); ++k) {
+      check_metric("/objectives/" + std::to_string(i) + "/terms/" + std::to_string(k) + "/metric",
+                   ec->objectives[i].terms[k].metric);
+    }
+  }
   for (size_t i = 0; i < ec->constraints.size(); ++i)
     check_metric("/constraints/" + std::to_string(i) + "/metric", ec->constraints[i].metric);
 }
@@ -285,13 +325,113 @@ io::InputError optimizer_error(const std::string& file, const std::string& err) 
                         err.substr(colon + 2, rule - colon - 2));
 }
 
+bool is_moo_algorithm(const std::string& name) {
+  const auto& names = pareto::moo_algorithm_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// A MooOptions::validate message ("field: value: expected rule") as an InputError: the
+// objective count at /objectives (or /objective), the algorithm at /optimizer/algorithm,
+// everything else at /optimizer/options/<field>.
+io::InputError moo_error(const std::string& file, const std::string& err, bool multi_form) {
+  const std::size_t colon = err.find(": ");
+  const std::string field = err.substr(0, colon);
+  std::string pointer = "/optimizer/options/" + field;
+  if (field.rfind("options/", 0) == 0) pointer = "/optimizer/" + field;
+  if (field == "algorithm") pointer = "/optimizer/algorithm";
+  if (field == "objectives") pointer = multi_form ? "/objectives" : "/objective";
+  if (colon == std::string::npos)
+    return io::InputError(file, pointer, "valid multi-objective options", err);
+  if (field == "objectives") {
+    const std::size_t end = err.find(": ", colon + 2);
+    return io::InputError(file, pointer,
+                          "at least 2 objectives (a multi-objective algorithm needs at least 2)",
+                          err.substr(colon + 2, end == std::string::npos ? end : end - colon - 2));
+  }
+  std::size_t rule = err.find(": expected ", colon);
+  std::size_t skip = 11;
+  if (rule == std::string::npos) {  // "field: value: rule" with a rule that is no "expected ..."
+    rule = err.find(": ", colon + 2);
+    skip = 2;
+  }
+  if (rule == std::string::npos)
+    return io::InputError(file, pointer, "valid multi-objective options", err);
+  return io::InputError(file, pointer, err.substr(rule + skip),
+                        err.substr(colon + 2, rule - colon - 2));
+}
+
+// The multi-objective form of "optimizer" (library pagmo, algorithm nsga2 | moead | nspso):
+// seed and penalty_weight as for the other libraries, and "options" holding population,
+// generations, an optional hypervolume reference point and the algorithm's own options.
+void parse_moo_optimizer(io::JsonReader& o, const json& doc, const std::string& file,
+                         long objectives, bool multi_form, OptimizerOptions* op,
+                         std::optional<pareto::MooOptions>* moo) {
+  for (const char* key : {"max_evaluations", "max_time"}) {
+    if (o.has(key)) {
+      throw o.error(key,
+                    "no \"" + std::string(key) + "\" with a multi-objective algorithm (it runs "
+                    "options/population x (options/generations + 1) evaluations)",
+                    io::describe(doc.at("optimizer").at(key)));
+    }
+  }
+  pareto::MooOptions m;
+  m.algorithm = op->algorithm;
+  op->seed = static_cast<unsigned long long>(o.integer_or("seed", 1, 0, 9007199254740991L));
+  m.seed = op->seed;
+  op->penalty_weight = o.number_or("penalty_weight", op->penalty_weight, 1e-300, 1e12);
+  if (o.has("options")) {
+    const json& opts = doc.at("optimizer").at("options");
+    o.optional("options");
+    if (!opts.is_object())
+      throw o.error("options", "an object of pagmo options", io::describe(opts));
+    io::JsonReader x = o.object("options");
+    m.population = x.integer_or("population", m.population, 1, 1000000);
+    m.generations = x.integer_or("generations", m.generations, 1, 100000000);
+    if (x.has("reference")) {
+      const Eigen::VectorXd ref = x.vector("reference", static_cast<int>(objectives));
+      m.reference.assign(ref.data(), ref.data() + ref.size());
+    } else {
+      x.optional("reference");
+    }
+    for (auto it = opts.begin(); it != opts.end(); ++it) {
+      if (it.key() == "population" || it.key() == "generations" || it.key() == "reference")
+        continue;
+      m.options[it.key()] = it.value();
+      x.optional(it.key());
+    }
+    x.finish();
+  } else {
+    o.optional("options");
+  }
+  for (const char* key : {"max_evaluations", "max_time"}) o.optional(key);
+  o.finish();
+  const std::vector<std::string> errors = m.validate(objectives);
+  if (!errors.empty()) throw moo_error(file, errors.front(), multi_form);
+  *moo = m;
+}
+
 void parse_study_optimizer(io::JsonReader o, const json& doc, const std::string& file,
-                           OptimizerOptions* op) {
+                           const EvaluatorConfig& ec, OptimizerOptions* op,
+                           std::optional<pareto::MooOptions>* moo) {
   op->library = o.choice_or("library", "nlopt", {"nlopt", "ipopt", "pagmo"});
   const bool pagmo = op->library == "pagmo";
   op->algorithm = o.string_or("algorithm", op->library == "ipopt" ? "ipopt"
                                            : pagmo                ? "cmaes"
                                                                   : "LN_BOBYQA");
+  const bool multi_form = !ec.objectives.empty();
+  if (pagmo && is_moo_algorithm(op->algorithm)) {
+    const long n = multi_form ? static_cast<long>(ec.objectives.size()) : 1L;
+    parse_moo_optimizer(o, doc, file, n, multi_form, op, moo);
+    return;
+  }
+  if (multi_form) {
+    std::string names;
+    for (const auto& a : pareto::moo_algorithm_names()) names += (names.empty() ? "" : ", ") + a;
+    throw o.error("algorithm",
+                  "a multi-objective algorithm of library pagmo (" + names +
+                      ") for a study with \"objectives\"",
+                  op->library + " \"" + op->algorithm + "\"");
+  }
   // NLopt's and Ipopt's stopping rules and derivatives mean nothing to pagmo: refuse them
   // rather than ignore them.
   for (const char* key : {"local_algorithm", "ftol_rel", "xtol_rel", "fd_step"}) {
@@ -375,7 +515,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
                   "true, with /pseudo_rigid/actuators false");
   }
   ec.fall_penalty = r.positive_or("fall_penalty", 1.0);
-  parse_study_optimizer(r.object("optimizer"), doc, file, &st.optimizer);
+  parse_study_optimizer(r.object("optimizer"), doc, file, ec, &st.optimizer, &st.moo);
   st.output_dir = r.string_or("output", "results/" + st.name);
   r.finish();
   st.hash = fnv1a_hex(doc.dump() + "\n" + resolved.dump());

@@ -11,6 +11,7 @@
 
 #include "optimize/evaluator.hpp"
 #include "optimize/optimizer.hpp"
+#include "optimize/pareto/moo_options.hpp"
 #include "io/load/json_reader.hpp"
 
 namespace pronk::optimize {
@@ -22,6 +23,10 @@ struct Study {
   std::string hash;           ///< FNV-1a 64 of the canonical study + scene documents (hex)
   EvaluatorConfig evaluator;  ///< scene document, parameters, scenarios, objective, constraints
   OptimizerOptions optimizer;
+  /// A multi-objective study (pagmo "nsga2", "moead" or "nspso" over evaluator.objectives,
+  /// docs/pareto.md): the driver's options. optimizer holds its library, algorithm, seed
+  /// and penalty_weight. Absent for single-objective studies.
+  std::optional<pareto::MooOptions> moo;
   /// Held-out scenarios the initial and the tuned design are checked on after
   /// the optimization (not seen by the optimizer).
   std::optional<ScenarioSet> validation;

@@ -270,6 +270,8 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
   return md.str();
 }
 
+}  // namespace
+
 json journal_header(const Study& st, const Evaluator& ev) {
   return {{"type", "header"},
           {"study", st.name},
@@ -300,8 +302,6 @@ JournalContents resumable_journal(const std::string& path, const Study& st, cons
   if (opt.verify >= 0) *verified = verify_records(previous, ev, opt.verify, opt.verify_seed, path);
   return previous;
 }
-
-}  // namespace
 
 std::string compiler_id() {
 #if defined(__clang__)
@@ -382,6 +382,12 @@ json design_document(const Study& st, const StudyOutcome& o, int threads) {
 }
 
 StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
+  if (st.moo) {  // optimize/moo_study.hpp runs these
+    throw io::InputError(st.file, "/optimizer/algorithm",
+                         "a single-objective optimizer here (a multi-objective study runs as a "
+                         "study of its own: pronk optimize STUDY)",
+                         "\"" + st.moo->algorithm + "\"");
+  }
   const double t0 = monotonic_seconds();
   StudyOutcome o;
   o.out_dir = opt.out_dir.empty() ? st.output_dir : opt.out_dir;

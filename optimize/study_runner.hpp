@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "optimize/journal.hpp"
 #include "optimize/progress.hpp"
 #include "optimize/study.hpp"
 
@@ -49,6 +50,18 @@ struct StudyOutcome {
 /// existing journal without --resume, or a directory another run holds;
 /// std::runtime_error for I/O failures.
 StudyOutcome run_study(const Study& study, const StudyRunOptions& options);
+
+/// The first line of a study's journal: its name, hash, parameters, constraints, optimizer
+/// ("library:algorithm") and seed.
+nlohmann::json journal_header(const Study& study, const Evaluator& ev);
+
+/// The journal at `path` to resume, checked against the study (its hash, its last record, and
+/// with options.verify its records re-evaluated: *verified of them); nothing when there is
+/// none (or only a torn header). An existing journal without --resume is bad input
+/// (io::InputError).
+JournalContents resumable_journal(const std::string& path, const Study& study,
+                                  const Evaluator& ev, const StudyRunOptions& options,
+                                  long* verified);
 
 /// The compiler that built this binary ("gcc 12.2.0", ...), recorded in designs.
 std::string compiler_id();
