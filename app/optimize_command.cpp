@@ -155,9 +155,11 @@ int run_multi_objective(const OptimizeArgs& args, const optimize::Study& study,
                   run::count_text(static_cast<long>(o.front.size()), "design").c_str(),
                   o.front_hypervolume,
                   o.result.hypervolumes.empty() ? 0.0 : o.result.hypervolumes.front(), o.knee);
-      std::printf("  results: %s/ (pareto.csv, pareto.json, summary.md)\n", o.out_dir.c_str());
+      std::printf("  results: %s/ (pareto.csv, pareto.json, summary.md, front/)\n",
+                  o.out_dir.c_str());
     }
   }
+  if (!o.stopped) write_page_after(o.out_dir, args.quiet);
   return o.stopped ? 1 : 0;
 }
 

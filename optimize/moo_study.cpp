@@ -181,8 +181,12 @@ MooStudyOutcome run_moo_study(const Study& st, const StudyRunOptions& opt) {
     return out;
   };
   const std::vector<double> lower(names.size(), 0.0), upper(names.size(), 1.0);
+  // The study's start (its parameters' initial values) is the first population's first
+  // member: a design known to work is on the first front, the rest is drawn from the seed.
+  pareto::MooOptions moo = *st.moo;
+  moo.initial_points = {evaluator.initial_point()};
   try {
-    o.result = pareto::run(batch, lower, upper, nobj, *st.moo, nullptr, replay);
+    o.result = pareto::run(batch, lower, upper, nobj, moo, nullptr, replay);
   } catch (const StopRequested&) {
     progress.finish();
     o.stopped = true;
@@ -241,6 +245,10 @@ MooStudyOutcome run_moo_study(const Study& st, const StudyRunOptions& opt) {
   io::write_file_atomic(o.out_dir + "/pareto.json",
                         io::dump_checked(pareto_document(st, o, opt.threads)));
   io::write_file_atomic(o.out_dir + "/summary.md", summary_markdown(st, o));
+  // Each front design's playback on the first scenario (front/<k>/, the report page's).
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    write_design_run(o.out_dir + "/front/" + std::to_string(k), evaluator, xs[k]);
+  }
   return o;
 }
 

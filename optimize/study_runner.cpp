@@ -209,15 +209,6 @@ std::string figure_compare(const std::string& title) {
          "unset multiplot\n";
 }
 
-// Simulates a design on the first scenario and writes its outputs into dir.
-void write_design_run(const std::string& dir, const Evaluator& ev, const std::vector<double>& x) {
-  const scene::Scene base = ev.scene_at(x);
-  const auto& set = ev.config().scenarios;
-  const scene::Scene s = apply_scenario(base, set.scenarios.front(), set);
-  const RunResult r = simulate(s);
-  io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
-}
-
 // The tuned design on the validation starts, the nominal robot beside the perturbed ones.
 std::string validation_comparison(const StudyOutcome& o, bool stability) {
   std::ostringstream md;
@@ -271,6 +262,16 @@ std::string summary_markdown(const Study& st, const StudyOutcome& o) {
 }
 
 }  // namespace
+
+// Simulates a design on the first scenario and writes its outputs into dir.
+void write_design_run(const std::string& dir, const Evaluator& ev, const std::vector<double>& x) {
+  const scene::Scene base = ev.scene_at(x);
+  const auto& set = ev.config().scenarios;
+  const scene::Scene s = apply_scenario(base, set.scenarios.front(), set);
+  const RunResult r = simulate(s);
+  io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
+}
+
 
 json journal_header(const Study& st, const Evaluator& ev) {
   return {{"type", "header"},

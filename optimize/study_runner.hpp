@@ -78,4 +78,8 @@ nlohmann::json design_document(const Study& study, const StudyOutcome& outcome, 
 /// reads 0, which would look perfect).
 std::string metric_rows(const MetricMap& a, const MetricMap& b, bool stability);
 
+/// Simulates design `x` (optimizer coordinates) on the evaluator's first scenario and writes
+/// its run (CSV, figures) into `dir`: the playback of a tuned or front design.
+void write_design_run(const std::string& dir, const Evaluator& ev, const std::vector<double>& x);
+
 }  // namespace pronk::optimize
