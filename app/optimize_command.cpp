@@ -95,6 +95,24 @@ int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
   const optimize::StudyRunOptions opt = run_options(args, farm);
   const optimize::StagedOutcome o = optimize::run_staged_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet && o.pareto) {
+    for (size_t k = 0; k + 1 < o.stages.size(); ++k) {
+      const auto& s = o.stages[k];
+      std::printf("  stage %-16s %-13s cost %.6g -> %.6g%s\n", s.name.c_str(), s.model.c_str(),
+                  s.design.value("initial_cost", 0.0), s.design.value("cost", 0.0),
+                  s.skipped ? " (finished earlier)" : "");
+    }
+    if (o.ok) {
+      std::printf("%s: last stage %s (%s model) multi-objective: a front of %s, hypervolume "
+                  "%.6g, knee %ld\n",
+                  study.name.c_str(), o.stages.back().name.c_str(), o.stages.back().model.c_str(),
+                  run::count_text(o.front_size, "design").c_str(), o.front_hypervolume, o.knee);
+      std::printf("  results: %s/ (pareto.json, pareto.csv, stages/), %s\n", o.out_dir.c_str(),
+                  farm ? farm->describe().c_str() : threads_text(opt.threads).c_str());
+    }
+    return o.ok ? 0 : 1;
+  }
+  if (o.pareto) return o.ok ? 0 : 1;
   if (!args.quiet) {
     for (const auto& s : o.stages) {
       std::printf("  stage %-16s %-13s cost %.6g -> %.6g%s\n", s.name.c_str(), s.model.c_str(),
