@@ -439,8 +439,11 @@ std::string stages_after(const StagedStudy& st, size_t k,
                          const std::map<std::string, double>& initial) {
   std::string out;
   for (size_t j = k + 1; j < st.stages.size(); ++j) {
+    const Study s = stage_study(st, j, initial);
+    const long budget = s.moo ? s.moo->population * (s.moo->generations + 1)
+                              : s.optimizer.max_evaluations;
     out += (out.empty() ? "; then " : ", ") + st.stages[j].name + " (" +
-           std::to_string(stage_study(st, j, initial).optimizer.max_evaluations) +
+           std::to_string(budget) +
            " evaluations, " + st.stages[j].model + " model)";
   }
   return out;

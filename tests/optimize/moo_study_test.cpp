@@ -297,3 +297,46 @@ TEST_CASE("multi-objective studies: the front, hypervolumes, threads, resume and
                                           std::to_string(front.size())});
   check_bad_input(past, d / "t1/pareto.json" + ": /front: expected a front with an index");
 }
+
+TEST_CASE("multi-objective studies: a staged study may end with a multi-objective stage",
+          "[moo-study][staged]") {
+  TempDir d("moo_staged");
+  // The example's problem: a single-objective BOBYQA stage, then its objectives by NSGA-II.
+  json example = json::parse(slurp(kStudy));
+  json staged = example;
+  staged["name"] = "moo_staged";
+  staged["scene"] = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case2_legged_impulse.json";
+  staged.erase("objectives");
+  staged["objective"] = json::parse(R"([{"metric": "x_error"}, {"metric": "attitude_error"}])");
+  staged["optimizer"] = json::parse(
+      R"({"library": "nlopt", "algorithm": "LN_BOBYQA", "max_evaluations": 12, "seed": 3})");
+  staged["stages"] = json::array(
+      {json{{"name", "single"}, {"model", "impulse"}},
+       json{{"name", "front"},
+            {"model", "impulse"},
+            {"objectives", example.at("objectives")},
+            {"optimizer", example.at("optimizer")}}});
+  write_file(d / "staged.json", staged.dump(1));
+  const Run r = cli_support::pronk(d, {"optimize", d / "staged.json", "-q", "--threads", "2",
+                                       "--out", d / "out"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(std::filesystem::exists(d / "out/stages/1_single/design.json"));
+  const json top = json::parse(slurp(d / "out/pareto.json"));
+  CHECK(slurp(d / "out/pareto.json") == slurp(d / "out/stages/2_front/pareto.json"));
+  CHECK(top.at("evaluations") == 84);
+  REQUIRE(top.at("front").size() >= 2);
+  // The stage's study document carries the first stage's design for the parameters it
+  // does not tune (here it tunes them all), and the front reproduces from it.
+  const Run rep =
+      cli_support::pronk(d, {"reproduce", d / "out/pareto.json", "--front-index", "0"});
+  INFO(rep.out << rep.err);
+  CHECK(rep.code == 0);
+
+  // Only the last stage may be multi-objective.
+  staged["stages"].push_back(json{{"name", "after"}, {"model", "impulse"}});
+  write_file(d / "bad.json", staged.dump(1));
+  const Run bad = cli_support::pronk(d, {"optimize", d / "bad.json", "--out", d / "bad"});
+  check_bad_input(bad, d / "bad.json" + ": /stages/1/optimizer/algorithm: expected a "
+                                        "single-objective optimizer (only the last stage");
+}
