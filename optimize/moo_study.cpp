@@ -192,7 +192,9 @@ MooStudyOutcome run_moo_study(const Study& st, const StudyRunOptions& opt) {
     return o;
   } catch (const std::invalid_argument& e) {
     // The driver refuses a record that is not the point it asks for: a journal of another run.
-    throw io::InputError(journal_path, "", "the journal of this study's run", e.what());
+    if (std::string(e.what()).rfind("resume:", 0) == 0)
+      throw io::InputError(journal_path, "", "the journal of this study's run", e.what());
+    throw std::runtime_error(std::string("multi-objective driver: ") + e.what());
   }
   progress.finish();
   journal.sync();
