@@ -49,7 +49,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "optimize",
       "Run an optimization study: tune scene parameters over a scenario set with NLopt or Ipopt.\n"
-      "Writes journal.jsonl (every evaluation), history.csv, design.json, summary.md and figures.");
+      "Writes journal.jsonl (every evaluation), history.csv, design.json, summary.md and figures.\n"
+      "A study with \"objectives\" and pagmo nsga2, moead or nspso writes pareto.csv and\n"
+      "pareto.json instead (docs/pareto.md).");
   cmd->add_option("study", args.study_path, "Study file (JSON)")->required();
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
