@@ -4,7 +4,8 @@
 // evaluations, its hypervolume and the driver's per generation agree with an independent
 // 2-D sweep, the hypervolume never falls, 1 and 2 threads give the same journal and numbers,
 // a truncated or killed run resumes to the same journal bytes and front, a front design
-// reproduces bit for bit, and bad input names its file and pointer (exit 2).
+// reproduces bit for bit, bad input names its file and pointer (exit 2), a staged study ends
+// with a multi-objective stage, and 2 MPI ranks give the threaded run's files.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -340,3 +341,29 @@ TEST_CASE("multi-objective studies: a staged study may end with a multi-objectiv
   check_bad_input(bad, d / "bad.json" + ": /stages/1/optimizer/algorithm: expected a "
                                         "single-objective optimizer (only the last stage");
 }
+
+#ifdef PRONK_MPIEXEC
+TEST_CASE("multi-objective studies: 2 MPI ranks give the threaded run's journal and front",
+          "[moo-study][mpi]") {
+  TempDir d("moo_mpi");
+  const Run threads = optimize(d, "threads", "2");
+  REQUIRE(threads.code == 0);
+  std::string cmd = "cd " + quote(d.path) + " && ASAN_OPTIONS=detect_leaks=0 ";
+  cmd += PRONK_MPIEXEC;
+  cmd += " -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ";
+  cmd += quote(PRONK_EXE) + " optimize " + quote(kStudy) + " --out " + quote(d / "mpi");
+  cmd += " >" + quote(d / ".stdout") + " 2>" + quote(d / ".stderr");
+  const int status = std::system(cmd.c_str());
+  INFO(slurp(d / ".stderr"));
+  REQUIRE(status == 0);
+  CHECK(slurp(d / ".stdout").find("2 MPI ranks") != std::string::npos);
+  CHECK(slurp(d / "mpi/journal.jsonl") == slurp(d / "threads/journal.jsonl"));
+  json a = json::parse(slurp(d / "threads/pareto.json"));
+  json b = json::parse(slurp(d / "mpi/pareto.json"));
+  for (json* j : {&a, &b}) {
+    j->erase("threads");
+    j->erase("wall_time_s");
+  }
+  CHECK(a == b);
+}
+#endif
