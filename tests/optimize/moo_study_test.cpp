@@ -294,6 +294,30 @@ TEST_CASE("multi-objective studies: the front, hypervolumes, threads, resume and
     CHECK(rep.code == 0);
     CHECK_THAT(rep.out, Catch::Contains("reproduced: 0 of"));
   }
+  // On another build (the recorded commit changed): each value within the tolerance its
+  // design's perturbation run recorded; a value moved beyond it is a mismatch (exit 1).
+  json other = doc;
+  other["commit"] = "another-commit";
+  for (const json& f : other.at("front")) {
+    const json& t = f.at("reproduction").at("tolerance");
+    CHECK(t.at("objectives").size() == 2);
+    CHECK(t.at("constraints").size() == 1);
+    CHECK(t.at("metrics").contains("mean(x_error)"));
+    CHECK(f.at("reproduction").at("validation").at("tolerance").is_object());
+  }
+  write_file(d / "other.json", other.dump());
+  const Run tolerant =
+      cli_support::pronk(d, {"reproduce", d / "other.json", "--front-index", "0"});
+  INFO(tolerant.out << tolerant.err);
+  CHECK(tolerant.code == 0);
+  CHECK_THAT(tolerant.out, Catch::Contains("another build: each value within the tolerance"));
+  const double x = other["front"][0]["objectives"]["tracking"].get<double>();
+  other["front"][0]["objectives"]["tracking"] = x * (1 + 1e-3);
+  write_file(d / "moved.json", other.dump());
+  const Run moved = cli_support::pronk(d, {"reproduce", d / "moved.json", "--front-index", "0"});
+  CHECK(moved.code == 1);
+  CHECK_THAT(moved.out, Catch::Contains("NOT REPRODUCED: 1 of"));
+
   const Run past = cli_support::pronk(d, {"reproduce", d / "t1/pareto.json", "--front-index",
                                           std::to_string(front.size())});
   check_bad_input(past, d / "t1/pareto.json" + ": /front: expected a front with an index");
