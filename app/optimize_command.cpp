@@ -167,10 +167,13 @@ int run_multi_objective(const OptimizeArgs& args, const optimize::Study& study,
       std::printf("%s: stopped after %s (resume with --resume)\n", study.name.c_str(),
                   run::count_text(o.evaluations, "evaluation").c_str());
     } else {
-      std::printf("%s: pagmo %s, %s (%ld replayed), %ld feasible, %.1f s, %s\n",
+      std::printf("%s: pagmo %s, %s (%ld replayed%s), %ld feasible, %.1f s, %s\n",
                   study.name.c_str(), study.moo->algorithm.c_str(),
-                  run::count_text(o.evaluations, "evaluation").c_str(), o.replayed, o.feasible,
-                  o.wall_time, workers.c_str());
+                  run::count_text(o.evaluations, "evaluation").c_str(), o.replayed,
+                  args.verify.sample >= 0
+                      ? (", " + std::to_string(o.verified) + " of them verified").c_str()
+                      : "",
+                  o.feasible, o.wall_time, workers.c_str());
       std::printf("  front: %s, hypervolume %.6g (first population %.6g), knee %ld\n",
                   run::count_text(static_cast<long>(o.front.size()), "design").c_str(),
                   o.front_hypervolume,
