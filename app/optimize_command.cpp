@@ -49,7 +49,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "optimize",
       "Run an optimization study: tune scene parameters over a scenario set with NLopt or Ipopt.\n"
-      "Writes journal.jsonl (every evaluation), history.csv, design.json, summary.md and figures.");
+      "Writes journal.jsonl (every evaluation), history.csv, design.json, summary.md and figures.\n"
+      "A study with \"objectives\" and pagmo nsga2, moead or nspso writes pareto.csv and\n"
+      "pareto.json instead (docs/pareto.md).");
   cmd->add_option("study", args.study_path, "Study file (JSON)")->required();
   cmd->add_option("--threads", args.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
@@ -95,6 +97,24 @@ int run_staged(const OptimizeArgs& args, const optimize::StagedStudy& study,
   const optimize::StudyRunOptions opt = run_options(args, farm);
   const optimize::StagedOutcome o = optimize::run_staged_study(study, opt);
   std::signal(SIGINT, SIG_DFL);
+  if (!args.quiet && o.pareto) {
+    for (size_t k = 0; k + 1 < o.stages.size(); ++k) {
+      const auto& s = o.stages[k];
+      std::printf("  stage %-16s %-13s cost %.6g -> %.6g%s\n", s.name.c_str(), s.model.c_str(),
+                  s.design.value("initial_cost", 0.0), s.design.value("cost", 0.0),
+                  s.skipped ? " (finished earlier)" : "");
+    }
+    if (o.ok) {
+      std::printf("%s: last stage %s (%s model) multi-objective: a front of %s, hypervolume "
+                  "%.6g, knee %ld\n",
+                  study.name.c_str(), o.stages.back().name.c_str(), o.stages.back().model.c_str(),
+                  run::count_text(o.front_size, "design").c_str(), o.front_hypervolume, o.knee);
+      std::printf("  results: %s/ (pareto.json, pareto.csv, stages/), %s\n", o.out_dir.c_str(),
+                  farm ? farm->describe().c_str() : threads_text(opt.threads).c_str());
+    }
+    return o.ok ? 0 : 1;
+  }
+  if (o.pareto) return o.ok ? 0 : 1;
   if (!args.quiet) {
     for (const auto& s : o.stages) {
       std::printf("  stage %-16s %-13s cost %.6g -> %.6g%s\n", s.name.c_str(), s.model.c_str(),
@@ -147,10 +167,13 @@ int run_multi_objective(const OptimizeArgs& args, const optimize::Study& study,
       std::printf("%s: stopped after %s (resume with --resume)\n", study.name.c_str(),
                   run::count_text(o.evaluations, "evaluation").c_str());
     } else {
-      std::printf("%s: pagmo %s, %s (%ld replayed), %ld feasible, %.1f s, %s\n",
+      std::printf("%s: pagmo %s, %s (%ld replayed%s), %ld feasible, %.1f s, %s\n",
                   study.name.c_str(), study.moo->algorithm.c_str(),
-                  run::count_text(o.evaluations, "evaluation").c_str(), o.replayed, o.feasible,
-                  o.wall_time, workers.c_str());
+                  run::count_text(o.evaluations, "evaluation").c_str(), o.replayed,
+                  args.verify.sample >= 0
+                      ? (", " + std::to_string(o.verified) + " of them verified").c_str()
+                      : "",
+                  o.feasible, o.wall_time, workers.c_str());
       std::printf("  front: %s, hypervolume %.6g (first population %.6g), knee %ld\n",
                   run::count_text(static_cast<long>(o.front.size()), "design").c_str(),
                   o.front_hypervolume,

@@ -131,6 +131,11 @@ int run_reproduce(const ReproduceArgs& args) {
   opt.scenarios_only = args.scenarios_only;
   opt.validate();  // before reading the design: a bad option is the first error
   const nlohmann::json design = io::read_json_file(args.design_path);
+  if (args.front_index < 0 && design.is_object() && design.value("type", "") == "pronk_pareto") {
+    throw io::InputError(args.design_path, "/type",
+                         "\"pronk_design\" (a design.json; a pareto.json needs --front-index K)",
+                         "string \"pronk_pareto\"");
+  }
   const optimize::ReproduceReport rep =
       args.front_index >= 0
           ? optimize::reproduce_front_design(design, args.design_path, args.front_index, opt)

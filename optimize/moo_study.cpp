@@ -118,6 +118,26 @@ std::string summary_markdown(const Study& st, const MooStudyOutcome& o) {
   return md.str();
 }
 
+// tolerance_json's metrics, plus the objectives and constraint values, each kSafetyFactor
+// times the largest change a perturbation made to it.
+json front_tolerance(const Evaluation& reference, const std::vector<Evaluation>& perturbed) {
+  json t = tolerance_json(reference, perturbed);
+  t.erase("cost");  // a multi-objective study's cost is 0
+  auto spread = [&](const std::vector<double>& ref, auto member) {
+    std::vector<double> out(ref.size(), 0.0);
+    for (const Evaluation& e : perturbed) {
+      const std::vector<double>& v = e.*member;
+      for (size_t j = 0; j < ref.size() && j < v.size(); ++j)
+        out[j] = std::max(out[j], std::abs(v[j] - ref[j]));
+    }
+    for (double& x : out) x *= kSafetyFactor;
+    return out;
+  };
+  t["objectives"] = spread(reference.objectives, &Evaluation::objectives);
+  t["constraints"] = spread(reference.constraints, &Evaluation::constraints);
+  return t;
+}
+
 }  // namespace
 
 double constraint_penalty(const std::vector<double>& constraints, double weight) {
@@ -196,7 +216,9 @@ MooStudyOutcome run_moo_study(const Study& st, const StudyRunOptions& opt) {
     return o;
   } catch (const std::invalid_argument& e) {
     // The driver refuses a record that is not the point it asks for: a journal of another run.
-    throw io::InputError(journal_path, "", "the journal of this study's run", e.what());
+    if (std::string(e.what()).rfind("resume:", 0) == 0)
+      throw io::InputError(journal_path, "", "the journal of this study's run", e.what());
+    throw std::runtime_error(std::string("multi-objective driver: ") + e.what());
   }
   progress.finish();
   journal.sync();
@@ -234,12 +256,40 @@ MooStudyOutcome run_moo_study(const Study& st, const StudyRunOptions& opt) {
       throw std::logic_error("run_moo_study: a front design evaluated again gave other objectives");
     o.front[k].scenarios = std::move(full[k]);
   }
+  std::optional<Evaluator> val;
   if (st.validation) {
-    const Evaluator val = validation_evaluator(st, opt.threads, opt.farm);
-    std::vector<Evaluation> v = val.evaluate_full_batch(xs);
+    val.emplace(validation_evaluator(st, opt.threads, opt.farm));
+    std::vector<Evaluation> v = val->evaluate_full_batch(xs);
     for (std::size_t k = 0; k < v.size(); ++k) o.front[k].validation = std::move(v[k]);
   }
   o.wall_time = monotonic_seconds() - t0;
+  // Each front design's perturbation run, all designs' points in one batch per set (timed
+  // apart from the study's wall time, as design.json's is).
+  std::vector<pareto::Point> moved;
+  for (const auto& x : xs)
+    for (int k = 0; k < kPerturbations; ++k) moved.push_back(perturbed_unit(x, k));
+  const std::vector<Evaluation> moved_s = evaluator.evaluate_full_batch(moved);
+  std::vector<Evaluation> moved_v;
+  if (val) moved_v = val->evaluate_full_batch(moved);
+  for (std::size_t k = 0; k < o.front.size(); ++k) {
+    auto slice = [&](const std::vector<Evaluation>& all) {
+      return std::vector<Evaluation>(all.begin() + static_cast<long>(k) * kPerturbations,
+                                     all.begin() + static_cast<long>(k + 1) * kPerturbations);
+    };
+    FrontDesign& d = o.front[k];
+    d.reproduction = {{"method", "perturbation"},
+                      {"perturbations", kPerturbations},
+                      {"step", kPerturbationStep},
+                      {"safety_factor", kSafetyFactor},
+                      {"tolerance", front_tolerance(d.scenarios, slice(moved_s))},
+                      {"fragile_trials", fragile_trials(d.scenarios, slice(moved_s))},
+                      {"validation", nullptr}};
+    if (d.validation) {
+      d.reproduction["validation"] = {
+          {"tolerance", front_tolerance(*d.validation, slice(moved_v))},
+          {"fragile_trials", fragile_trials(*d.validation, slice(moved_v))}};
+    }
+  }
 
   io::write_file_atomic(o.out_dir + "/pareto.csv", pareto_csv(st, o));
   io::write_file_atomic(o.out_dir + "/pareto.json",
@@ -312,7 +362,8 @@ json pareto_document(const Study& st, const MooStudyOutcome& o, int threads) {
                      {"constraints", d.scenarios.constraints},
                      {"metrics", metrics_of(d.scenarios)},
                      {"trials", to_json(trial_decisions(d.scenarios))},
-                     {"validation", validation}});
+                     {"validation", validation},
+                     {"reproduction", d.reproduction}});
   }
   return {{"type", "pronk_pareto"},
           {"study", st.name},
@@ -353,12 +404,17 @@ json pareto_document(const Study& st, const MooStudyOutcome& o, int threads) {
 
 namespace {
 
-// Compares one recorded value with its re-evaluation under the report's mode.
-void compare_value(ReproduceReport& rep, const std::string& name, double recorded, double got) {
+// Compares one recorded value with its re-evaluation under the report's mode (`tolerance`:
+// the design's own, for kTolerance).
+void compare_value(ReproduceReport& rep, const std::string& name, double recorded, double got,
+                   double tolerance = 0.0) {
   ReproducedValue v{name, recorded, got, 0.0, false};
   if (got == recorded) ++rep.bit_identical;
   if (rep.mode == CompareMode::kBitIdentical) {
     v.ok = got == recorded;
+  } else if (rep.mode == CompareMode::kTolerance) {
+    v.tolerance = tolerance;
+    v.ok = std::abs(got - recorded) <= tolerance;
   } else {
     v.tolerance = rep.rtol * std::abs(recorded) + 1e-12;
     v.ok = std::abs(got - recorded) <= v.tolerance;
@@ -369,8 +425,19 @@ void compare_value(ReproduceReport& rep, const std::string& name, double recorde
 
 // Objectives, constraints and metrics of one recorded set against the re-evaluation e.
 void compare_set(ReproduceReport& rep, io::JsonReader& r, const json& node, const Study& st,
-                 const Evaluation& e, const std::string& prefix, bool named_objectives) {
+                 const Evaluation& e, const std::string& prefix, bool named_objectives,
+                 const json& tolerance) {
   const auto& ev = st.evaluator;
+  // The design's own tolerance of a value (0 when it records none: only bit-identity passes).
+  auto tol = [&](const char* kind, const json& key) {
+    if (!tolerance.is_object() || !tolerance.contains(kind)) return 0.0;
+    const json& t = tolerance.at(kind);
+    if (key.is_string() && t.is_object() && t.contains(key.get<std::string>()))
+      return t.at(key.get<std::string>()).get<double>();
+    if (key.is_number() && t.is_array() && key.get<size_t>() < t.size())
+      return t.at(key.get<size_t>()).get<double>();
+    return 0.0;
+  };
   const json& objectives = node.at("objectives");
   for (size_t j = 0; j < ev.objectives.size(); ++j) {
     const json* v = named_objectives ? (objectives.contains(ev.objectives[j].name)
@@ -384,7 +451,7 @@ void compare_set(ReproduceReport& rep, io::JsonReader& r, const json& node, cons
                            "a recorded objective value", v ? io::describe(*v) : "nothing");
     }
     compare_value(rep, prefix + ev.objectives[j].name, v->get<double>(),
-                  j < e.objectives.size() ? e.objectives[j] : NAN);
+                  j < e.objectives.size() ? e.objectives[j] : NAN, tol("objectives", json(j)));
   }
   const json& g = node.at("constraints");
   if (!g.is_array() || g.size() != ev.constraints.size()) {
@@ -393,17 +460,18 @@ void compare_set(ReproduceReport& rep, io::JsonReader& r, const json& node, cons
                          io::describe(g));
   }
   for (size_t c = 0; c < g.size(); ++c)
-    compare_value(rep, prefix + "g" + std::to_string(c), g.at(c).get<double>(), e.constraints[c]);
+    compare_value(rep, prefix + "g" + std::to_string(c), g.at(c).get<double>(), e.constraints[c],
+                  tol("constraints", json(c)));
   for (auto it = node.at("metrics").begin(); it != node.at("metrics").end(); ++it) {
     const auto found = e.aggregated.find(it.key());
     compare_value(rep, prefix + it.key(), it.value().get<double>(),
-                  found != e.aggregated.end() ? found->second : NAN);
+                  found != e.aggregated.end() ? found->second : NAN, tol("metrics", json(it.key())));
   }
 }
 
 // The per-trial decisions of one recorded set against the re-evaluation e.
 void compare_trials(ReproduceReport& rep, const json& recorded, const Evaluation& e,
-                    const std::string& set) {
+                    const std::string& set, const json& fragile) {
   const std::vector<TrialDecision> got = trial_decisions(e);
   for (size_t i = 0; i < recorded.size(); ++i) {
     ++rep.trials_compared;
@@ -412,8 +480,11 @@ void compare_trials(ReproduceReport& rep, const json& recorded, const Evaluation
                        t.value("apex_held", false)};
     const TrialDecision have = i < got.size() ? got[i] : TrialDecision{want.name, "none", false, false};
     if (have == want) continue;
-    rep.decision_differences.push_back({set, static_cast<long>(i), want, have, false});
-    ++rep.decision_mismatches;
+    bool is_fragile = false;
+    if (fragile.is_array())
+      for (const json& f : fragile) is_fragile = is_fragile || (f.is_number() && f.get<size_t>() == i);
+    rep.decision_differences.push_back({set, static_cast<long>(i), want, have, is_fragile});
+    if (!is_fragile) ++rep.decision_mismatches;
   }
 }
 
@@ -465,25 +536,35 @@ ReproduceReport reproduce_front_design(const json& pareto, const std::string& pa
   rep.recorded_build = rc + ", " + rcomp + ", " + rflags;
   rep.this_build = commit + ", " + compiler + ", " + flags;
   rep.decisions_recorded = true;
+  const json none;
+  const json& record = d.contains("reproduction") ? d.at("reproduction") : none;
+  const json& val_record =
+      record.is_object() && record.contains("validation") ? record.at("validation") : none;
+  auto part = [&](const json& j, const char* key) -> const json& {
+    return j.is_object() && j.contains(key) ? j.at(key) : none;
+  };
   if (opt.rtol) {
     rep.mode = CompareMode::kRelative;
     rep.rtol = *opt.rtol;
   } else if (rep.same_build || (opt.strict && rep.same_toolchain)) {
     rep.mode = CompareMode::kBitIdentical;
+  } else if (record.is_object()) {
+    rep.mode = CompareMode::kTolerance;
   } else {
     rep.mode = CompareMode::kRelative;
     rep.rtol = kLegacyRtol;
   }
   const DesignEvaluation e = evaluate_design(st, unit, opt.threads, !opt.scenarios_only);
-  compare_set(rep, r, d, st, e.scenarios, "", true);
-  compare_trials(rep, d.at("trials"), e.scenarios, "scenarios");
+  compare_set(rep, r, d, st, e.scenarios, "", true, part(record, "tolerance"));
+  compare_trials(rep, d.at("trials"), e.scenarios, "scenarios", part(record, "fragile_trials"));
   if (st.validation && opt.scenarios_only) {
     rep.validation_skipped = true;
   } else if (st.validation) {
     const json& v = d.at("validation");
     io::JsonReader vr(v, path, at + "/validation");
-    compare_set(rep, vr, v, st, *e.validation, "validation ", false);
-    compare_trials(rep, v.at("trials"), *e.validation, "validation");
+    compare_set(rep, vr, v, st, *e.validation, "validation ", false, part(val_record, "tolerance"));
+    compare_trials(rep, v.at("trials"), *e.validation, "validation",
+                   part(val_record, "fragile_trials"));
   }
   return rep;
 }

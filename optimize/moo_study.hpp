@@ -31,6 +31,10 @@ struct FrontDesign {
   long evaluation = 0;  ///< its index among the run's evaluations (the journal's "index")
   Evaluation scenarios;  ///< re-evaluated on the study's scenarios (the recorded numbers)
   std::optional<Evaluation> validation;  ///< on the validation set, when the study has one
+  /// Its perturbation run (reproduction_record.hpp), as design.json records one: the
+  /// tolerance of every metric, objective and constraint value, and the fragile trials, of
+  /// each set. What `pronk reproduce --front-index` uses on another build.
+  nlohmann::json reproduction;
 };
 
 struct MooStudyOutcome {
@@ -64,11 +68,12 @@ nlohmann::json pareto_document(const Study& study, const MooStudyOutcome& outcom
 std::string pareto_csv(const Study& study, const MooStudyOutcome& outcome);
 
 /// Re-evaluates front design `index` of pareto.json `pareto` (read from `path`) and compares
-/// its recorded objectives, constraints, metrics (and validation metrics), bit for bit on
-/// the recording build (or with options.strict on its compiler and flags), else within
-/// options.rtol or kLegacyRtol relative; the per-trial decisions must be identical (front
-/// designs record no perturbation run, so no trial is known to be fragile). Throws
-/// io::InputError for a document that is not a pareto.json or an index out of range.
+/// its recorded objectives, constraints, metrics (and validation metrics) by the rules of
+/// reproduce_design: bit for bit on the recording build (or with options.strict on its
+/// compiler and flags), within options.rtol when given, else within the tolerances the
+/// design's perturbation run recorded; the per-trial decisions must be identical except
+/// for the trials that run found fragile. Throws io::InputError for a document that is not
+/// a pareto.json or an index out of range.
 ReproduceReport reproduce_front_design(const nlohmann::json& pareto, const std::string& path,
                                        long index, const ReproduceOptions& options);
 

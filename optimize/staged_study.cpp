@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include "io/load/scene_loader.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/run_output.hpp"
+#include "optimize/moo_study.hpp"
 #include "optimize/output_lock.hpp"
 #include "optimize/progress.hpp"
 #include "sim/scene/robot_scaling.hpp"
@@ -23,8 +25,8 @@ namespace {
 // Keys a stage may set for itself; every other study key is shared by all stages.
 const std::vector<std::string>& stage_study_keys() {
   static const std::vector<std::string> keys = {"optimizer",   "scenarios", "validation",
-                                                "stability",   "objective", "constraints",
-                                                "fall_penalty"};
+                                                "stability",   "objective", "objectives",
+                                                "constraints", "fall_penalty"};
   return keys;
 }
 
@@ -159,6 +161,10 @@ Study stage_study(const StagedStudy& st, size_t k, const std::map<std::string, d
   d["name"] = st.name + "_" + stage.name;
   d["model"] = stage.model;
   for (const auto& [key, v] : stage.overrides.items()) d[key] = v;
+  // A stage's own "objectives" (a multi-objective last stage) replaces the shared
+  // "objective", and a stage's own "objective" the shared "objectives".
+  if (stage.overrides.contains("objectives")) d.erase("objective");
+  if (stage.overrides.contains("objective")) d.erase("objectives");
   json scene = scene_at(st, values);
   // A leg stiffness no stage tunes follows the design's stance time in the full model.
   if (stage.model == "pseudo_rigid" && st.leg_stiffness_follows &&
@@ -217,7 +223,16 @@ StagedStudy parse_staged_study(const json& doc, const std::string& file,
   // Every stage must be a valid study of its own model (from the initial design).
   std::map<std::string, double> initial;
   for (const auto& p : st.parameters) initial[p.name] = p.initial;
-  for (size_t k = 0; k < st.stages.size(); ++k) stage_study(st, k, initial);
+  for (size_t k = 0; k < st.stages.size(); ++k) {
+    const Study s = stage_study(st, k, initial);
+    // The next stage starts from a stage's one design: only the last may be multi-objective.
+    if (s.moo && k + 1 < st.stages.size()) {
+      throw io::InputError(file, "/stages/" + std::to_string(k) + "/optimizer/algorithm",
+                           "a single-objective optimizer (only the last stage may be "
+                           "multi-objective: a later stage starts from one design)",
+                           "\"" + s.moo->algorithm + "\"");
+    }
+  }
   return st;
 }
 
@@ -424,8 +439,11 @@ std::string stages_after(const StagedStudy& st, size_t k,
                          const std::map<std::string, double>& initial) {
   std::string out;
   for (size_t j = k + 1; j < st.stages.size(); ++j) {
+    const Study s = stage_study(st, j, initial);
+    const long budget = s.moo ? s.moo->population * (s.moo->generations + 1)
+                              : s.optimizer.max_evaluations;
     out += (out.empty() ? "; then " : ", ") + st.stages[j].name + " (" +
-           std::to_string(stage_study(st, j, initial).optimizer.max_evaluations) +
+           std::to_string(budget) +
            " evaluations, " + st.stages[j].model + " model)";
   }
   return out;
@@ -449,8 +467,38 @@ StagedOutcome run_staged_study(const StagedStudy& st, const StudyRunOptions& opt
                                     " (" + st.stages[k].model + " model), " +
                                     format_duration(monotonic_seconds() - t0) + " elapsed" +
                                     stages_after(st, k, initial));
-    o.stages.push_back(
-        run_stage(st, k, start_values(st, k, o.stages, initial), opt, o.out_dir, &stopped));
+    const std::map<std::string, double> from = start_values(st, k, o.stages, initial);
+    const Study moo = stage_study(st, k, from);
+    if (moo.moo) {  // the last stage, multi-objective: its front is the study's result
+      StageOutcome so;
+      so.name = st.stages[k].name;
+      so.model = st.stages[k].model;
+      so.out_dir = o.out_dir + "/stages/" + std::to_string(k + 1) + "_" + so.name;
+      so.values = from;
+      StudyRunOptions mo = opt;
+      mo.out_dir = so.out_dir;
+      const MooStudyOutcome r = run_moo_study(moo, mo);
+      o.stages.push_back(so);
+      o.pareto = true;
+      o.wall_time = monotonic_seconds() - t0;
+      if (r.stopped) {
+        o.ok = false;
+        return o;
+      }
+      o.front_size = static_cast<long>(r.front.size());
+      o.front_hypervolume = r.front_hypervolume;
+      o.knee = r.knee;
+      // OUT/pareto.json and pareto.csv: the stage's, reproducible by front index.
+      for (const char* f : {"/pareto.json", "/pareto.csv"}) {
+        std::ifstream in(so.out_dir + f, std::ios::binary);
+        std::ostringstream text;
+        text << in.rdbuf();
+        if (!in) throw std::runtime_error("cannot read " + so.out_dir + f);
+        io::write_file_atomic(o.out_dir + f, text.str());
+      }
+      return o;
+    }
+    o.stages.push_back(run_stage(st, k, from, opt, o.out_dir, &stopped));
     if (stopped) {
       o.ok = false;
       o.wall_time = monotonic_seconds() - t0;

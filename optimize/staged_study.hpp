@@ -76,6 +76,12 @@ struct StagedOutcome {
   std::string out_dir;
   double wall_time = 0.0;  ///< [s]
   bool ok = true;          ///< every stage's optimizer finished (not stopped or failed)
+  /// The last stage is multi-objective: OUT/pareto.json and pareto.csv are the result (its
+  /// stage's), no design.json, no fidelity gap (gap_first, final_best, cross stay empty).
+  bool pareto = false;
+  long front_size = 0;
+  double front_hypervolume = 0.0;
+  long knee = -1;
 };
 
 /// Runs every stage (resuming finished ones with options.resume), then writes

@@ -4,7 +4,8 @@
 // evaluations, its hypervolume and the driver's per generation agree with an independent
 // 2-D sweep, the hypervolume never falls, 1 and 2 threads give the same journal and numbers,
 // a truncated or killed run resumes to the same journal bytes and front, a front design
-// reproduces bit for bit, and bad input names its file and pointer (exit 2).
+// reproduces bit for bit, bad input names its file and pointer (exit 2), a staged study ends
+// with a multi-objective stage, and 2 MPI ranks give the threaded run's files.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -293,7 +294,100 @@ TEST_CASE("multi-objective studies: the front, hypervolumes, threads, resume and
     CHECK(rep.code == 0);
     CHECK_THAT(rep.out, Catch::Contains("reproduced: 0 of"));
   }
+  // On another build (the recorded commit changed): each value within the tolerance its
+  // design's perturbation run recorded; a value moved beyond it is a mismatch (exit 1).
+  json other = doc;
+  other["commit"] = "another-commit";
+  for (const json& f : other.at("front")) {
+    const json& t = f.at("reproduction").at("tolerance");
+    CHECK(t.at("objectives").size() == 2);
+    CHECK(t.at("constraints").size() == 1);
+    CHECK(t.at("metrics").contains("mean(x_error)"));
+    CHECK(f.at("reproduction").at("validation").at("tolerance").is_object());
+  }
+  write_file(d / "other.json", other.dump());
+  const Run tolerant =
+      cli_support::pronk(d, {"reproduce", d / "other.json", "--front-index", "0"});
+  INFO(tolerant.out << tolerant.err);
+  CHECK(tolerant.code == 0);
+  CHECK_THAT(tolerant.out, Catch::Contains("another build: each value within the tolerance"));
+  const double x = other["front"][0]["objectives"]["tracking"].get<double>();
+  other["front"][0]["objectives"]["tracking"] = x * (1 + 1e-3);
+  write_file(d / "moved.json", other.dump());
+  const Run moved = cli_support::pronk(d, {"reproduce", d / "moved.json", "--front-index", "0"});
+  CHECK(moved.code == 1);
+  CHECK_THAT(moved.out, Catch::Contains("NOT REPRODUCED: 1 of"));
+
   const Run past = cli_support::pronk(d, {"reproduce", d / "t1/pareto.json", "--front-index",
                                           std::to_string(front.size())});
   check_bad_input(past, d / "t1/pareto.json" + ": /front: expected a front with an index");
 }
+
+TEST_CASE("multi-objective studies: a staged study may end with a multi-objective stage",
+          "[moo-study][staged]") {
+  TempDir d("moo_staged");
+  // The example's problem: a single-objective BOBYQA stage, then its objectives by NSGA-II.
+  json example = json::parse(slurp(kStudy));
+  json staged = example;
+  staged["name"] = "moo_staged";
+  staged["scene"] = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case2_legged_impulse.json";
+  staged.erase("objectives");
+  staged["objective"] = json::parse(R"([{"metric": "x_error"}, {"metric": "attitude_error"}])");
+  staged["optimizer"] = json::parse(
+      R"({"library": "nlopt", "algorithm": "LN_BOBYQA", "max_evaluations": 12, "seed": 3})");
+  staged["stages"] = json::array(
+      {json{{"name", "single"}, {"model", "impulse"}},
+       json{{"name", "front"},
+            {"model", "impulse"},
+            {"objectives", example.at("objectives")},
+            {"optimizer", example.at("optimizer")}}});
+  write_file(d / "staged.json", staged.dump(1));
+  const Run r = cli_support::pronk(d, {"optimize", d / "staged.json", "-q", "--threads", "2",
+                                       "--out", d / "out"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(std::filesystem::exists(d / "out/stages/1_single/design.json"));
+  const json top = json::parse(slurp(d / "out/pareto.json"));
+  CHECK(slurp(d / "out/pareto.json") == slurp(d / "out/stages/2_front/pareto.json"));
+  CHECK(top.at("evaluations") == 84);
+  REQUIRE(top.at("front").size() >= 2);
+  // The stage's study document carries the first stage's design for the parameters it
+  // does not tune (here it tunes them all), and the front reproduces from it.
+  const Run rep =
+      cli_support::pronk(d, {"reproduce", d / "out/pareto.json", "--front-index", "0"});
+  INFO(rep.out << rep.err);
+  CHECK(rep.code == 0);
+
+  // Only the last stage may be multi-objective.
+  staged["stages"].push_back(json{{"name", "after"}, {"model", "impulse"}});
+  write_file(d / "bad.json", staged.dump(1));
+  const Run bad = cli_support::pronk(d, {"optimize", d / "bad.json", "--out", d / "bad"});
+  check_bad_input(bad, d / "bad.json" + ": /stages/1/optimizer/algorithm: expected a "
+                                        "single-objective optimizer (only the last stage");
+}
+
+#ifdef PRONK_MPIEXEC
+TEST_CASE("multi-objective studies: 2 MPI ranks give the threaded run's journal and front",
+          "[moo-study][mpi]") {
+  TempDir d("moo_mpi");
+  const Run threads = optimize(d, "threads", "2");
+  REQUIRE(threads.code == 0);
+  std::string cmd = "cd " + quote(d.path) + " && ASAN_OPTIONS=detect_leaks=0 ";
+  cmd += PRONK_MPIEXEC;
+  cmd += " -x ASAN_OPTIONS --allow-run-as-root --oversubscribe -np 2 ";
+  cmd += quote(PRONK_EXE) + " optimize " + quote(kStudy) + " --out " + quote(d / "mpi");
+  cmd += " >" + quote(d / ".stdout") + " 2>" + quote(d / ".stderr");
+  const int status = std::system(cmd.c_str());
+  INFO(slurp(d / ".stderr"));
+  REQUIRE(status == 0);
+  CHECK(slurp(d / ".stdout").find("2 MPI ranks") != std::string::npos);
+  CHECK(slurp(d / "mpi/journal.jsonl") == slurp(d / "threads/journal.jsonl"));
+  json a = json::parse(slurp(d / "threads/pareto.json"));
+  json b = json::parse(slurp(d / "mpi/pareto.json"));
+  for (json* j : {&a, &b}) {
+    j->erase("threads");
+    j->erase("wall_time_s");
+  }
+  CHECK(a == b);
+}
+#endif
