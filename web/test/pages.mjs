@@ -53,6 +53,8 @@ run('optimize', 'studies/study2_legged_pulse_duty50.json', '--out', `${work}/stu
   '--set', '/stability=false');
 run('compare', 'results/study4_cobyla/design.json', 'results/study4_bobyqa/design.json', '--out', `${work}/compare`,
   '-q', '--trials', '4', '--play', 'validation:1');
+run('optimize', 'studies/moo_impulse_example.json', '--out', `${work}/pareto`, '-q');
+const paretoJson = JSON.parse(fs.readFileSync(`${work}/pareto/pareto.json`, 'utf8'));
 fs.cpSync(path.join(root, 'results/study5_fidelity_gap'), `${work}/staged`, { recursive: true });
 run('view', `${work}/staged`, '-q');
 run('map', 'studies/map_seed_duty.json', '--out', `${work}/map`, '-q', '--set', '/axes/0/count=4',
@@ -86,6 +88,8 @@ const pages = [
   { name: 'staged', file: 'staged/report.html', dir: 'staged/stages/3_full/tuned', times: [0.1, 0.9],
     evaluations: ['1_impulse', '2_pulse', '3_full'].map((s) => evaluations(`${work}/staged/stages/${s}/journal.jsonl`)).reduce((a, b) => a + b) },
   { name: 'map', file: 'map/report.html', dir: null, times: [0.1, 0.9] },
+  { name: 'pareto', file: 'pareto/report.html', dir: `pareto/front/${paretoJson.knee}`, times: [0.1, 0.9],
+    front: paretoJson.front.length, knee: paretoJson.knee },
   { name: 'compare', file: 'compare/report.html', dir: 'compare/runs/study4_cobyla', times: [0.1, 0.9],
     designs: 2, trialRows: fs.readFileSync(`${work}/compare/trials.csv`, 'utf8').trim().split('\n').length - 1 },
 ];
@@ -196,6 +200,20 @@ for (const p of pages) {
     check(p.name, 'one playback per design', shown.designs === p.designs && shown.canvases === p.designs,
       `${shown.canvases} views of ${shown.designs} designs`);
     check(p.name, 'trial rows = trials.csv rows', shown.rows === p.trialRows, `${shown.rows} vs ${p.trialRows}`);
+  }
+  if (p.front !== undefined) {
+    // A multi-objective study: every front design is a point; the knee is selected first and a
+    // pick selects another design and plays it (a new 3-D view).
+    const shown = await page.evaluate(() => ({ front: pronkTest.frontPoints(), chosen: pronkTest.chosen() }));
+    check(p.name, 'front points = pareto.json front', shown.front === p.front, `${shown.front} vs ${p.front}`);
+    check(p.name, 'the knee is selected first', shown.chosen === p.knee, `${shown.chosen} vs ${p.knee}`);
+    const other = (p.knee + 1) % p.front;
+    const picked = await page.evaluate((k) => { pronkTest.pick(k); return { chosen: pronkTest.chosen(),
+      canvases: document.querySelectorAll('.stage canvas').length,
+      heading: [...document.querySelectorAll('h3')].map((h) => h.textContent).find((t) => t.startsWith('design ')) }; }, other);
+    check(p.name, 'a pick selects that design and shows its playback',
+      picked.chosen === other && picked.canvases === 1 && picked.heading.startsWith(`design ${other} `),
+      `${picked.chosen}, ${picked.canvases} views, "${picked.heading}"`);
   }
   if (p.spectralRow !== undefined) {
     // The spectral radius is a row of the metric tables only when the study computed it (off,
