@@ -30,16 +30,29 @@ function scatterData(P, a, b, chosen) {
 
 /// One scatter of objective b over objective a; a click picks the nearest front design
 /// (in screen distance) and calls onPick(front index).
+/// The axis range that shows the front and the reference point (evaluations far beyond it,
+/// such as falls with their penalties, would squeeze the front into a corner).
+function frontRange(P, k) {
+  const v = P.front.map((f) => f.objectives[k]);
+  if (Number.isFinite(P.reference?.[k])) v.push(P.reference[k]);
+  let lo = Math.min(...v), hi = Math.max(...v);
+  const pad = 0.08 * (hi - lo || Math.abs(hi) || 1);
+  return [lo - pad, hi + pad];
+}
+
 function scatter(cell, P, a, b, chosen, onPick, small) {
   const s = scatterData(P, a, b, chosen);
   const name = (k) => P.objectives[k].name;
+  const xr = frontRange(P, a), yr = frontRange(P, b);
+  const outside = s.x.filter((x, r) => x < xr[0] || x > xr[1] || s.y[r] < yr[0] || s.y[r] > yr[1]).length;
   const u = linePlot(cell, s.x, [
     { label: 'evaluated', values: s.all, points: true, size: 4, color: grey },
     { label: 'non-dominated', values: s.front, points: true, size: 7, color: blue },
     { label: 'knee', values: s.knee, points: true, size: 12, color: green },
     { label: 'selected', values: s.chosen, points: true, size: 13, color: red }],
-  { title: small ? `${name(b)} over ${name(a)}` : `the front: ${name(b)} over ${name(a)} (every evaluated design; click a point)`,
-    xlabel: name(a), ylabel: name(b), height: small ? 200 : 320, legend: !small });
+  { title: (small ? `${name(b)} over ${name(a)}` : `the front: ${name(b)} over ${name(a)} (evaluated designs; click a point)`)
+      + (outside ? ` · ${outside} beyond the reference point not shown` : ''),
+    xlabel: name(a), ylabel: name(b), height: small ? 200 : 320, legend: !small, xrange: xr, yrange: yr });
   u.over.addEventListener('click', () => {
     const cx = u.cursor.left, cy = u.cursor.top;
     if (!(cx >= 0 && cy >= 0)) return;

@@ -87,6 +87,7 @@ export function linePlot(container, x, series, opts = {}) {
   }
   const padding = opts.xticks ? [12, 60, 0, 0] : undefined;
   if (opts.yrange) scales.y = { range: opts.yrange };
+  if (opts.xrange) scales.x = { time: false, range: opts.xrange };
   if (series.some((s) => s.scale === 'y2')) {
     scales.y2 = {};
     axes.push({ scale: 'y2', side: 1, label: opts.y2label ?? '', grid: { show: false }, size: 56, ...linear });
