@@ -12,39 +12,23 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench/measure.hpp"
+#include "bench/bench_clock.hpp"
 #include "bench/bench_problems.hpp"
 #include "optimize/evaluator.hpp"
 #include "optimize/pareto/moo_driver.hpp"
 
 using namespace pronk::optimize;
+using pronk::app::bench::median;
+using pronk::bench::cpu_seconds;
+using pronk::bench::load_average;
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double one = -1.0;
-  in >> one;
-  return one;
-}
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 /// The two objectives of an evaluation: the study's cost and the mean cost of transport; a
 /// failed evaluation (no valid scene) a large finite penalty, as the driver requires.

@@ -14,8 +14,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,29 +25,17 @@
 #include "optimize/optimizer.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
+#include "bench/bench_clock.hpp"
 #include "bench/bench_problems.hpp"
 
 using namespace pronk::optimize;
 using pronk::app::bench::median;
+using pronk::bench::cpu_seconds;
 using pronk::bench::full_model_problem;
+using pronk::bench::load_average;
 using pronk::bench::study2_problem;
 
 namespace {
-
-/// The 1-minute load average (/proc/loadavg), or -1 when unreadable.
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double one = -1.0;
-  in >> one;
-  return one;
-}
-
-/// CPU seconds of this process, all threads.
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 /// Wall and CPU seconds of f().
 template <class F>
