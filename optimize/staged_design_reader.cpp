@@ -1,8 +1,10 @@
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "optimize/design_reader_detail.hpp"
 #include "io/load/input_error.hpp"
+#include "io/load/scene_loader.hpp"
 
 namespace pronk::optimize::design_detail {
 
@@ -49,6 +51,33 @@ std::string check_stage_record(io::JsonReader s, const json& node, const json& s
   if (!node.at("stability").is_null()) s.object("stability");
   s.finish();
   return name;
+}
+
+// The last stage's own design.json, where its directory beside the staged design holds one:
+// every value in it must be the staged design's, which carries the last stage's record. So
+// reproducing the staged design reproduces the last stage too, and CTest and
+// scripts/reproduce_all.sh run that reproduction once (CMakeLists.txt).
+void check_last_stage_file(const std::string& path, const json& design) {
+  namespace fs = std::filesystem;
+  const json& last = design.at("stages").back();
+  const fs::path dir = fs::path(last.at("directory").get<std::string>()).filename();
+  const fs::path file = fs::path(path).parent_path() / "stages" / dir / "design.json";
+  std::error_code ec;
+  if (dir.empty() || !fs::is_regular_file(file, ec)) return;
+  const json stage = io::read_json_file(file.string());
+  if (!stage.is_object()) {
+    throw io::InputError(file.string(), "", "the last stage's design (an object)",
+                         io::describe(stage));
+  }
+  for (const auto& [key, value] : stage.items()) {
+    if (!design.contains(key) || design.at(key) != value) {
+      throw io::InputError(file.string(), "/" + io::pointer_escape(key),
+                           design.contains(key)
+                               ? "the staged design's /" + key + " (" + path + ")"
+                               : "nothing (the staged design " + path + " has no /" + key + ")",
+                           io::describe(value));
+    }
+  }
 }
 
 // A staged study's design: its stages, the fidelity gap and the cross evaluation, with the
@@ -98,6 +127,7 @@ void check_staged_records(io::JsonReader& r, const json& design) {
                                : "nothing");
     }
   }
+  check_last_stage_file(r.file(), design);
   require(r, "fidelity_gap");
   io::JsonReader gap = r.object("fidelity_gap");
   if (required_string(gap, "model") != last.at("model").get<std::string>()) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces every committed design, each results/**/design.json (the stage designs of staged
-# studies too), with `pronk reproduce`, several at once, and fails when one does not reproduce.
+# studies too; a last stage's through the staged design that carries it), with `pronk reproduce`, several at once, and fails when one does not reproduce.
 #   scripts/reproduce_all.sh [PRONK [REPRODUCE OPTIONS...]]
 # PRONK defaults to build/pronk. CTest runs the same reproductions one test per design
 # (`reproduce/<path>`, label `reproduce`; so `bash scripts/test.sh` and CI do); this script
@@ -20,7 +20,22 @@ jobs=${PRONK_REPRODUCE_JOBS:-$(nproc)}
 logs=$(mktemp -d)
 trap 'rm -rf "$logs"' EXIT
 
-mapfile -t designs < <(cd "$results" && find . -name design.json | sed 's|^\./||' | sort)
+mapfile -t all_designs < <(cd "$results" && find . -name design.json | sed 's|^\./||' | sort)
+# A staged design carries its last stage's record, and reproducing it checks the last stage's
+# own design.json against it: that file is reproduced once, through the staged design.
+last_stage() {  # the last stage's design.json of staged design $1, if it is one
+  { grep -o '"directory": *"[^"]*"' "$results/$1" || true; } | tail -n 1 |
+    sed -E 's|.*"([^"]*)"$|\1|; s|.*/||; s|^|'"$(dirname "$1")"'/stages/|; s|$|/design.json|'
+}
+declare -A covered=()
+for d in "${all_designs[@]}"; do
+  s=$(last_stage "$d")
+  if [[ -n "$s" ]]; then covered[$s]=1; fi
+done
+designs=()
+for d in "${all_designs[@]}"; do
+  if [[ -z "${covered[$d]:-}" ]]; then designs+=("$d"); fi
+done
 if [[ ${#designs[@]} == 0 ]]; then
   echo "reproduce_all: no design.json under $results" >&2
   exit 1

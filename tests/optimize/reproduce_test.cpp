@@ -388,5 +388,21 @@ TEST_CASE("a staged design's stages agree with the design itself",
       CHECK(e.pointer().rfind(target.substr(0, target.find('/', 1)), 0) == 0);
     }
   }
+  // The last stage's own design.json is the staged design's record: a stage file that says
+  // otherwise is named (CTest reproduces the staged design only, not that file again).
+  const std::string last = dir + "/stages/2_pulse/design.json";
+  json stage = rp_slurp_json(last);
+  REQUIRE(stage.at("cost") == design.at("cost"));
+  stage["cost"] = stage.at("cost").get<double>() + 1.0;
+  std::ofstream(last) << stage.dump();
+  try {
+    read_design(design, path);
+    FAIL("accepted a last stage that differs");
+  } catch (const io::InputError& e) {
+    CHECK(e.file() == last);
+    CHECK(e.pointer() == "/cost");
+  }
+  std::filesystem::remove(last);
+  CHECK_NOTHROW(read_design(design, path));  // a staged design without its stage files
   std::filesystem::remove_all(dir);
 }
