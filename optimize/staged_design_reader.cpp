@@ -2,9 +2,9 @@
 #include <string>
 #include <vector>
 
-#include "optimize/design_reader_detail.hpp"
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
+#include "optimize/design_reader_detail.hpp"
 
 namespace pronk::optimize::design_detail {
 

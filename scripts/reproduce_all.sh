@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Reproduces every committed design, each results/**/design.json (the stage designs of staged
-# studies too; a last stage's through the staged design that carries it), with `pronk reproduce`, several at once, and fails when one does not reproduce.
+# studies too; a last stage's through the staged design that carries it), with
+# `pronk reproduce`, several at once, and fails when one does not reproduce.
 #   scripts/reproduce_all.sh [PRONK [REPRODUCE OPTIONS...]]
 # PRONK defaults to build/pronk. CTest runs the same reproductions one test per design
 # (`reproduce/<path>`, label `reproduce`; so `bash scripts/test.sh` and CI do); this script
@@ -22,7 +23,8 @@ trap 'rm -rf "$logs"' EXIT
 
 mapfile -t all_designs < <(cd "$results" && find . -name design.json | sed 's|^\./||' | sort)
 # A staged design carries its last stage's record, and reproducing it checks the last stage's
-# own design.json against it: that file is reproduced once, through the staged design.
+# own design.json against it: that file is reproduced once, through the staged design (the
+# rule CMakeLists.txt applies to the CTest tests; "directory" is a key of the stage records only).
 last_stage() {  # the last stage's design.json of staged design $1, if it is one
   { grep -o '"directory": *"[^"]*"' "$results/$1" || true; } | tail -n 1 |
     sed -E 's|.*"([^"]*)"$|\1|; s|.*/||; s|^|'"$(dirname "$1")"'/stages/|; s|$|/design.json|'

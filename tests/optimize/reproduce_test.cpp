@@ -11,14 +11,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/build_info.hpp"
+#include "io/load/input_error.hpp"
 #include "optimize/design_reader.hpp"
 #include "optimize/reproduce.hpp"
 #include "optimize/reproduction_record.hpp"
 #include "optimize/staged_study.hpp"
 #include "optimize/study.hpp"
 #include "optimize/study_runner.hpp"
-#include "io/build_info.hpp"
-#include "io/load/input_error.hpp"
 
 using namespace pronk;
 using namespace pronk::optimize;
