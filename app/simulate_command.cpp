@@ -14,6 +14,7 @@
 #include "sim/pseudorigid/simulator.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/setpoint_check.hpp"
+#include "sim/robot/accuracy_check.hpp"
 #include "sim/run/count_text.hpp"
 #include "sim/simulate.hpp"
 
@@ -121,8 +122,15 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
                 run::count_text(c.events, "event").c_str(), r.run.cost.wall_time * 1e3);
   }
   for (const auto& [id, count] : r.run.warnings) {
-    if (id == "far_from_setpoint" || id == "never_settled") continue;  // printed below
+    // Printed below, with their numbers.
+    if (id == "far_from_setpoint" || id == "never_settled" || id == "energy_beyond_accuracy") {
+      continue;
+    }
     std::printf("  warning: %s (%ld)\n", id.c_str(), count);
+  }
+  if (r.full_model()) {
+    const robot::AccuracyCheck a = robot::check_accuracy(scene, r);
+    if (a.beyond) std::printf("  warning: %s\n", robot::accuracy_warning_text(a).c_str());
   }
   print_setpoint_check(reduced::check_setpoint(scene, r.run, metrics));
   std::printf("  outputs in %s/\n", dir.c_str());
@@ -151,6 +159,9 @@ int run_simulate(const SimulateArgs& args) {
   }
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
   reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
+  if (r.full_model()) {
+    robot::add_accuracy_warning(robot::check_accuracy(scene, r), &r.run.warnings);
+  }
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
   const io::WrittenOutputs w = io::write_simulation_outputs(dir, scene, r, metrics);
   const bool ok = r.run.status == reduced::RunStatus::kCompleted;

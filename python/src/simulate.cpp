@@ -13,6 +13,7 @@
 #include "python/src/scene_object.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/setpoint_check.hpp"
+#include "sim/robot/accuracy_check.hpp"
 
 namespace pronk::python {
 
@@ -81,6 +82,9 @@ PyResult simulate_scene(const py::handle& scene_obj, const py::handle& model,
     const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
     // The setpoint check's warnings, as `pronk simulate` writes them (summary.json).
     reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
+    if (r.full_model()) {
+      robot::add_accuracy_warning(robot::check_accuracy(scene, r), &r.run.warnings);
+    }
     summary = io::simulation_summary_json(scene, r, metrics);
   }
   out.status = summary.at("status").get<std::string>();
