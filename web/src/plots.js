@@ -19,13 +19,15 @@ export function fewestAxisTicks() { return fewestTicks; }
 
 /// Ticks of a linear axis: uPlot's multiples of its increment, the increment halved until at
 /// least two fall in the range (a short plot of a wide range would otherwise show one, "0").
+/// Each tick is its integer multiple i x step, not a running sum: summed steps miss zero by the
+/// rounding of the sum (a tick labelled -5.55112e-17 on [-1.2, 0]).
 function atLeastTwoTicks(u, axisIdx, min, max, incr) {
   let step = incr;
   let ticks = [];
   for (let k = 0; k < 12 && ticks.length < 2 && step > 0; k++, step /= 2) {
     ticks = [];
-    for (let v = Math.ceil(min / step) * step; v <= max + 1e-9 * step; v += step) {
-      ticks.push(Number(v.toPrecision(12)));
+    for (let i = Math.ceil(min / step); i * step <= max + 1e-9 * step; i++) {
+      ticks.push(Number((i * step).toPrecision(12)));
     }
   }
   if (ticks.length < 2) ticks = [min, max];
