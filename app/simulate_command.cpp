@@ -95,7 +95,8 @@ void print_setpoint_check(const reduced::SetpointCheck& c) {
 
 // One line per fact of a robot run, in any model.
 void print_robot_run(const scene::Scene& scene, const RunResult& r,
-                     const reduced::RunMetrics& metrics, const std::string& dir,
+                     const reduced::RunMetrics& metrics, const reduced::SetpointCheck& setpoint,
+                     const robot::AccuracyCheck& accuracy, const std::string& dir,
                      const std::string& page) {
   const auto& c = r.run.cost.solver;
   std::printf("%s (%s model): %s, %s\n", scene.name.c_str(),
@@ -128,11 +129,10 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
     }
     std::printf("  warning: %s (%ld)\n", id.c_str(), count);
   }
-  if (r.full_model()) {
-    const robot::AccuracyCheck a = robot::check_accuracy(scene, r);
-    if (a.beyond) std::printf("  warning: %s\n", robot::accuracy_warning_text(a).c_str());
+  if (accuracy.beyond) {
+    std::printf("  warning: %s\n", robot::accuracy_warning_text(accuracy).c_str());
   }
-  print_setpoint_check(reduced::check_setpoint(scene, r.run, metrics));
+  print_setpoint_check(setpoint);
   std::printf("  outputs in %s/\n", dir.c_str());
   print_page_line(page);
 }
@@ -158,15 +158,17 @@ int run_simulate(const SimulateArgs& args) {
                          e.what());
   }
   const reduced::RunMetrics metrics = reduced::compute_metrics(scene, r.run);
-  reduced::add_setpoint_warnings(reduced::check_setpoint(scene, r.run, metrics), &r.run.warnings);
-  if (r.full_model()) {
-    robot::add_accuracy_warning(robot::check_accuracy(scene, r), &r.run.warnings);
-  }
+  // The checks of a completed run: their warnings go to summary.json and the terminal.
+  const reduced::SetpointCheck setpoint = reduced::check_setpoint(scene, r.run, metrics);
+  reduced::add_setpoint_warnings(setpoint, &r.run.warnings);
+  robot::AccuracyCheck accuracy;  // the reduced models keep no energy balance: no check
+  if (r.full_model()) accuracy = robot::check_accuracy(scene, r);
+  robot::add_accuracy_warning(accuracy, &r.run.warnings);
   const std::string dir = args.out_dir.empty() ? "out/" + scene.name : args.out_dir;
   const io::WrittenOutputs w = io::write_simulation_outputs(dir, scene, r, metrics);
   const bool ok = r.run.status == reduced::RunStatus::kCompleted;
   if (!args.quiet) {
-    print_robot_run(scene, r, metrics, dir, w.page);
+    print_robot_run(scene, r, metrics, setpoint, accuracy, dir, w.page);
   } else if (!ok) {  // quiet keeps success silent, not a fall
     std::fprintf(stderr, "pronk simulate: %s: %s, %s (outputs in %s/)\n", scene.name.c_str(),
                  std::string(reduced::to_string(r.run.status)).c_str(), r.run.reason.c_str(),

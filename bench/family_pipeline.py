@@ -50,14 +50,7 @@ def stage_times(out):
 def same_design(mine, committed):
     """Whether two design.json files hold the same tuned parameters (bit for bit) and the
     same validation outcome; the fields that differ otherwise."""
-    differ = []
-    for key in ("parameters", "values", "x"):
-        if key in mine or key in committed:
-            if mine.get(key) != committed.get(key):
-                differ.append(key)
-    for key in ("validation", "cost"):
-        if mine.get(key) != committed.get(key):
-            differ.append(key)
+    differ = [k for k in ("parameters", "validation", "cost") if mine.get(k) != committed.get(k)]
     return not differ, differ
 
 

@@ -27,7 +27,6 @@ AccuracyCheck check_accuracy(const scene::Scene& scene, const RobotRunResult& ru
   const RobotMonitors& m = run.monitors;
   c.drift_relative = m.drift_relative();
   c.accuracy = scene.pseudo_rigid.accuracy;
-  c.automatic = m.method_auto;
   if (m.method_auto) {
     const pseudorigid::MethodChoice& k = m.method_choice;
     c.method = "auto: " + method_text(k.method, k.h_fixed, k.rtol) +

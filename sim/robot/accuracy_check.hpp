@@ -17,10 +17,9 @@ struct AccuracyCheck {
   double drift_relative = 0.0;  ///< largest sampled energy-balance drift / energy scale [-]
   double accuracy = 0.0;        ///< the scene's target [-]
   bool beyond = false;          ///< completed, and the drift exceeded the target
-  /// How the run was integrated, for the message: "verlet at a fixed h = 0.00015 s" or
-  /// "auto (verlet h = 4.4e-05 s after a rerun)".
+  /// How the run was integrated, for the message: "verlet h = 0.00012 s, named by the scene:
+  /// nothing reruns it" or "auto: verlet h = 3.2e-05 s, already rerun once tighter".
   std::string method;
-  bool automatic = false;  ///< the method was auto's choice (and was rerun once if needed)
 };
 
 /// The check of a full-model run of scene. Runs that fell or diverged get no flag: their
@@ -30,8 +29,8 @@ AccuracyCheck check_accuracy(const scene::Scene& scene, const RobotRunResult& ru
 /// Adds the check's warning "energy_beyond_accuracy" (counted once).
 void add_accuracy_warning(const AccuracyCheck& check, std::map<std::string, long>* warnings);
 
-/// The terminal line: "energy balance drifted 5.9e-03 of its scale, beyond the accuracy
-/// 1e-03 (verlet at a fixed h = 0.00015 s, which nothing reruns: ...)".
+/// The terminal line: "energy balance drifted 0.00068 of its scale, beyond the accuracy 0.0001
+/// (verlet h = 0.00012 s, named by the scene: nothing reruns it); ...".
 std::string accuracy_warning_text(const AccuracyCheck& check);
 
 }  // namespace pronk::robot

@@ -20,8 +20,7 @@ namespace {
 
 const std::string kScene = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
 
-/// Runs pr_running on verlet at a fixed 1.2e-4 s (auto's own step for it) with the given
-/// accuracy target; returns the run and its summary.
+/// Runs pr_running with the given pseudo_rigid.solver object; returns the run and its summary.
 std::pair<Run, json> run_at(const TempDir& dir, const std::string& out, const std::string& solver) {
   const Run r = pronk(dir, {"simulate", kScene, "--no-figures", "--set",
                             "/pseudo_rigid/solver=" + solver, "--out", out});
