@@ -187,6 +187,10 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
     so.h_min = o.number_or("h_min", so.h_min, 0.0, 1.0);
     so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
     so.event_tol = o.positive_or("event_tol", so.event_tol);
+    ode::parse_event_restart(
+        o.choice_or("event_restart", std::string(ode::to_string(so.event_restart)),
+                    {"interpolant", "step"}),
+        &so.event_restart);
     so.max_steps = o.integer_or("max_steps", so.max_steps, 1, 1000000000000L);
     so.max_steps_per_second =
         o.number_or("max_steps_per_second", so.max_steps_per_second, 0.0, 1e15);
@@ -251,6 +255,10 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"energy_tol", p.energy_tol}}}};
   // "auto" stays "auto" in the resolved scene: the choice depends on the run. The settings
   // auto chooses are left out (the reader refuses them under auto).
+  // Absent at its default: the scenes recorded before it existed keep their hash.
+  if (so.event_restart != ode::EventRestart::kInterpolant) {
+    j["solver"]["event_restart"] = std::string(ode::to_string(so.event_restart));
+  }
   if (p.solver_auto) {
     j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
     for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);
@@ -323,7 +331,8 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
           out.push_back(std::string("/pseudo_rigid/solver/") + k);
         }
       } else if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
-        out.push_back("/pseudo_rigid/solver/energy_tol");  // verlet's energy budget
+        out.push_back("/pseudo_rigid/solver/energy_tol");     // verlet's energy budget
+        out.push_back("/pseudo_rigid/solver/event_restart");  // verlet's restart at events
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :

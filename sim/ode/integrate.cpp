@@ -17,19 +17,22 @@ int crossing(int direction, double g_prev, double g_new) {
   return 0;
 }
 
-/// Locates the crossing of `event` inside [a, b] on the stepper's dense output
-/// with the Illinois method (safeguarded by bisection when progress stalls).
-/// g_a is strictly on the pre-crossing side, g_b on the post side (sign `dir`).
-/// Returns the post-side end of a final bracket no wider than tol [s].
-double locate(const EventFunction& event, const Stepper& stepper, int dir, double a, double g_a,
-              double b, double g_b, double tol, Vec& y) {
+/// Locates the crossing of an event inside [a, b] with the Illinois method (safeguarded by
+/// bisection when progress stalls); g_at(t) is the event's value at t. g_a is strictly on the
+/// pre-crossing side, g_b on the post side (sign `dir`); `first`, when inside, is the first
+/// trial. Returns the post-side end of a final bracket no wider than tol [s].
+template <class G>
+double locate(const G& g_at, int dir, double a, double g_a, double b, double g_b, double tol,
+              double first = std::numeric_limits<double>::quiet_NaN()) {
   auto is_post = [dir](double g) { return dir < 0 ? g <= 0.0 : g >= 0.0; };
   int last_side = 0;  // +1: b moved last, -1: a moved last
   bool bisect_next = false;
   for (int iter = 0; iter < 400 && b - a > tol; ++iter) {
     const double width = b - a;
     double t = 0.5 * (a + b);
-    if (!bisect_next) {
+    if (iter == 0 && first > a && first < b) {
+      t = first;
+    } else if (!bisect_next) {
       const double ts = b - g_b * (b - a) / (g_b - g_a);
       // Keep the trial strictly inside so the bracket always shrinks.
       const double margin = 0.25 * tol;
@@ -40,8 +43,7 @@ double locate(const EventFunction& event, const Stepper& stepper, int dir, doubl
     // midpoint lies strictly inside (the bracket is one double wide).
     if (!(t > a && t < b)) t = 0.5 * (a + b);
     if (!(t > a && t < b)) break;  // no representable point inside the bracket
-    stepper.dense(t, y);
-    const double g = event.value(t, y);
+    const double g = g_at(t);
     if (is_post(g)) {
       b = t;
       g_b = g;
@@ -56,6 +58,27 @@ double locate(const EventFunction& event, const Stepper& stepper, int dir, doubl
     bisect_next = (b - a) > 0.5 * width;
   }
   return b;
+}
+
+/// EventRestart::kStep: the crossing of `event` (located at t_dense on the dense output) on
+/// the stepper's own trajectory, every trial a retake of the step to it, and the stepper left
+/// retaken to it. Returns NaN, with the step as it was, when a retake fails.
+double locate_retaken(const OdeSystem& sys, const EventFunction& event, Stepper& stepper, int dir,
+                      double a, double g_a, double b, double g_b, double tol, double t_dense) {
+  bool failed = false;
+  auto g_at = [&](double t) {
+    if (failed || !stepper.retake(sys, t)) {
+      failed = true;
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    return event.value(t, stepper.y());
+  };
+  const double t = locate(g_at, dir, a, g_a, b, g_b, tol, t_dense);
+  if (failed || !stepper.retake(sys, t)) {
+    stepper.retake(sys, b);  // the whole step again, bit for bit
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return t;
 }
 
 }  // namespace
@@ -97,7 +120,7 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
     }
     const double t0 = stepper.t_prev();
     const double t1 = stepper.t();
-    int fired = -1;
+    int fired = -1, fired_dir = 0;
     double t_fire = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < ne; ++i) {
       g_new[i] = events[i]->value(t1, stepper.y());
@@ -110,16 +133,34 @@ IntegrateResult integrate(const OdeSystem& sys, Stepper& stepper, double t_end,
       }
       const int dir = crossing(events[i]->direction(), g_prev[i], g_new[i]);
       if (dir == 0) continue;
-      const double te =
-          locate(*events[i], stepper, dir, t0, g_prev[i], t1, g_new[i], options.event_tol, y_event);
+      const EventFunction& event = *events[i];
+      auto g_dense = [&](double t) {
+        stepper.dense(t, y_event);
+        return event.value(t, y_event);
+      };
+      const double te = locate(g_dense, dir, t0, g_prev[i], t1, g_new[i], options.event_tol);
       if (te < t_fire) {
         t_fire = te;
         fired = static_cast<int>(i);
+        fired_dir = dir;
       }
     }
     if (fired >= 0) {
+      // The restart point: the step retaken to the event (its own state; the observer then
+      // books the cut step whole), or the dense output there.
+      bool retaken = false;
+      if (options.event_restart == EventRestart::kStep && stepper.can_retake()) {
+        const double te = locate_retaken(sys, *events[fired], stepper, fired_dir, t0, g_prev[fired],
+                                         t1, g_new[fired], options.event_tol, t_fire);
+        retaken = !std::isnan(te);
+        if (retaken) t_fire = te;
+      }
       if (observer != nullptr) observer->on_step(stepper, t_fire);
-      stepper.dense(t_fire, y_event);
+      if (retaken) {
+        y_event = stepper.y();
+      } else {
+        stepper.dense(t_fire, y_event);
+      }
       stepper.reset(sys, t_fire, y_event);
       ++stepper.mutable_counters().events;
       result.reason = observer != nullptr && observer->stop_requested() ? StopReason::kStopped

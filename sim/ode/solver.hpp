@@ -49,6 +49,19 @@ std::string_view to_string(CvodeLinearSolver s);
 /// Parses the names of to_string; returns false on an unknown name.
 bool parse_cvode_linear_solver(std::string_view name, CvodeLinearSolver* out);
 
+/// Where integrate() restarts after an event located inside a step (method verlet).
+enum class EventRestart {
+  kInterpolant,  ///< at the step's dense output (cubic Hermite) at the event time
+  kStep,         ///< at the end of the step retaken from its start to the event time
+                 ///< (Stepper::retake): a state the method itself reaches, so the energy
+                 ///< balance's error converges with the step; other methods use kInterpolant
+};
+
+/// "interpolant", "step".
+std::string_view to_string(EventRestart r);
+/// Parses the names of to_string; returns false on an unknown name.
+bool parse_event_restart(std::string_view name, EventRestart* out);
+
 /// How to integrate. Defaults suit the reduced models.
 struct SolverOptions {
   Method method = Method::kDopri5;
@@ -65,6 +78,9 @@ struct SolverOptions {
   double h_max = 0.1;        ///< largest step [s]
   double h_min = 1e-13;      ///< adaptive step below this is a step-size collapse [s]
   double event_tol = 1e-13;  ///< event time tolerance [s]
+  /// verlet: the state a run restarts from after an event inside a step (docs/pseudorigid.md,
+  /// "Restarts at events"); the other methods always restart from their dense output.
+  EventRestart event_restart = EventRestart::kInterpolant;
   /// Step attempts (accepted + rejected) of the whole run before it ends with a reason: the
   /// stepper's counters, which carry over reset() (restarts at events), not one integrate() call.
   long max_steps = 100000000;
@@ -149,6 +165,14 @@ class Stepper {
   virtual SolverCounters& mutable_counters() = 0;
   /// Method verlet's energy bookkeeping (sim/ode/verlet.hpp); null for the other methods.
   virtual const VerletInfo* verlet_info() const { return nullptr; }
+  /// True when retake() can replace the last step (method verlet).
+  virtual bool can_retake() const { return false; }
+  /// Replaces the last accepted step by one from its start to t, t_prev() < t <= the step's
+  /// end as step() took it (a retaken step can be retaken again), so that t() == t and y() is
+  /// the method's own state there (EventRestart::kStep). Returns false, changing nothing, for
+  /// a method that cannot (then restart from dense()), a t outside the step, or a retaken step
+  /// that is not finite.
+  virtual bool retake(const OdeSystem& /*sys*/, double /*t*/) { return false; }
 };
 
 /// Creates the stepper of options.method for systems of dimension n. `norm`: the error norm
@@ -183,8 +207,9 @@ struct IntegrateResult {
 /// event fires (earliest in time, located on the dense output by a bracketing
 /// root finder to options.event_tol). On an event the stepper is reset to the
 /// event point (t_event, y(t_event)) so the caller can modify the state and
-/// reset again. `on_step` (optional) is called after every accepted step with
-/// the stepper, e.g. to sample output on a fixed grid via dense().
+/// reset again: y(t_event) from the dense output, or (options.event_restart kStep, on a
+/// stepper that can) from the step retaken to t_event. `on_step` (optional) is called after every
+/// accepted step with the stepper, e.g. to sample output on a fixed grid via dense().
 class StepObserver {
  public:
   virtual ~StepObserver() = default;

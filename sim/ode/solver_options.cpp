@@ -63,6 +63,26 @@ bool parse_cvode_linear_solver(std::string_view name, CvodeLinearSolver* out) {
   return false;
 }
 
+std::string_view to_string(EventRestart r) {
+  switch (r) {
+    case EventRestart::kInterpolant:
+      return "interpolant";
+    case EventRestart::kStep:
+      return "step";
+  }
+  return "unknown";
+}
+
+bool parse_event_restart(std::string_view name, EventRestart* out) {
+  for (EventRestart r : {EventRestart::kInterpolant, EventRestart::kStep}) {
+    if (name == to_string(r)) {
+      *out = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 bool is_adaptive(Method m) {
   return m == Method::kDopri5 || m == Method::kRodas4 || m == Method::kRadau5 ||
          m == Method::kCvodeBdf;

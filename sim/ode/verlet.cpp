@@ -70,6 +70,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     t_ = t;
     t_prev_ = t;
     t_base_ = t;
+    start_.t_end = t;  // no step to retake
     steps_since_base_ = 0;
     remaining_ = 0;  // a new grid step starts here; the planned sub-steps are kept
     y_ = y;
@@ -116,6 +117,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
       remaining_ = static_cast<int>(std::clamp(fit, 1.0, static_cast<double>(substeps_)));
     }
     double dissipated = 0.0, h = 0.0, k_net = 0.0, k_gap = 0.0;
+    start_ = {k_net_, k_gap_, h_last_, offset_, dissipated_, 0.0};
     for (;;) {
       double t_new = remaining_ <= 1 ? t_grid_ : t_ + (t_grid_ - t_) / remaining_;
       if (!(t_new > t_)) {  // sub-steps below the resolution of t: the rest in one
@@ -124,7 +126,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
       }
       h = t_new - t_;
       if (!(h > 0.0)) return StepStatus::kStepSizeCollapse;
-      dissipated = kick_drift_kick(sys, h, t_new);
+      dissipated = kick_drift_kick(sys, y_, f_, t_, h, t_new);
       // (x * 0 is 0 for a finite x and NaN otherwise: one vectorised pass per vector.)
       if (!std::isfinite((y_new_.array() * 0.0).sum() + (f_new_.array() * 0.0).sum())) {
         ++counters_.steps_rejected;
@@ -144,6 +146,58 @@ class VerletStepper final : public Stepper, public VerletInfo {
       grid_steps_at_rung_ = 0;
       substeps_ = finer;
     }
+    accept(sys, h, dissipated, k_net, k_gap);
+    start_.t_end = t_;
+    if (--remaining_ > 0) return StepStatus::kOk;
+    // At the grid point: the next grid step's rung.
+    // (T_net on the rung's step: the last sub-step may have been cut short.)
+    if (budget_ > 0.0) {
+      const double hr = h_fixed_ / substeps_;
+      next_rung(0.25 * hr * hr * k_net_);
+    }
+    if (last_) {
+      t_base_ = t_;
+      steps_since_base_ = 0;
+    } else {
+      ++steps_since_base_;
+    }
+    return StepStatus::kOk;
+  }
+
+  bool can_retake() const override { return true; }
+
+  /// The last step again from its start, cut short at t (or stretched up to its first length):
+  /// one step of t - t_prev(), booked as step() books it, from the bookkeeping the step started
+  /// with. The grid restarts at the reset() that follows.
+  bool retake(const OdeSystem& system, double t) override {
+    if (!(t > t_prev_ && t <= start_.t_end)) return false;
+    if (t == t_) return true;
+    const MechanicalSystem& sys = &system == system_ ? *mechanical_ : take(system);
+    const double h = t - t_prev_;
+    const double dissipated = kick_drift_kick(sys, y_prev_, f_prev_, t_prev_, h, t);
+    if (!std::isfinite((y_new_.array() * 0.0).sum() + (f_new_.array() * 0.0).sum())) return false;
+    double k_net = 0.0, k_gap = 0.0;
+    if (metric_) net_terms(sys, f_new_, fd_new_, &k_net, &k_gap);
+    y_ = y_prev_;
+    f_ = f_prev_;
+    fd_ = fd_prev_;
+    t_ = t_prev_;
+    k_net_ = start_.k_net;
+    k_gap_ = start_.k_gap;
+    h_last_ = start_.h_last;
+    offset_ = start_.offset;
+    dissipated_ = start_.dissipated;
+    --counters_.steps_accepted;  // the step is replaced, not added (accept() counts it)
+    accept(sys, h, dissipated, k_net, k_gap);
+    remaining_ = 0;
+    return true;
+  }
+
+  /// Makes the step in y_new_, f_new_, fd_new_ (size h, ending at t_new_) the current one and
+  /// books it: the dissipated energy, T_net's terms k_net, k_gap at its end, the switching
+  /// offset at its start.
+  void accept(const MechanicalSystem& sys, double h, double dissipated, double k_net,
+              double k_gap) {
     // dq/dt at the final momenta (dense output and the record of f).
     sys.position_rate(y_new_, f_new_);
 
@@ -171,20 +225,6 @@ class VerletStepper final : public Stepper, public VerletInfo {
     k_gap_ = k_gap;
     h_last_ = h;
     ++counters_.steps_accepted;
-    if (--remaining_ > 0) return StepStatus::kOk;
-    // At the grid point: the next grid step's rung.
-    // (T_net on the rung's step: the last sub-step may have been cut short.)
-    if (budget_ > 0.0) {
-      const double hr = h_fixed_ / substeps_;
-      next_rung(0.25 * hr * hr * k_net_);
-    }
-    if (last_) {
-      t_base_ = t_;
-      steps_since_base_ = 0;
-    } else {
-      ++steps_since_base_;
-    }
-    return StepStatus::kOk;
   }
 
   /// Cubic Hermite on the step; with the dissipation split the momentum slopes include the
@@ -213,18 +253,19 @@ class VerletStepper final : public Stepper, public VerletInfo {
   double switching_offset() const override { return offset_; }
 
  private:
-  /// One Verlet step of size h from (t_, y_, f_) to t_new into y_new_, f_new_ (the kicks'
-  /// forces at the new point in the momentum entries) and fd_new_ (the closing half step's
-  /// mean dissipative force); returns the energy the dissipation split removed [J]. Leaves
-  /// the accepted state untouched.
-  double kick_drift_kick(const MechanicalSystem& sys, double h, double t_new) {
+  /// One Verlet step of size h from (t0, y0) with the kicks' force f0 there to t_new into
+  /// y_new_, f_new_ (the kicks' forces at the new point in the momentum entries) and fd_new_
+  /// (the closing half step's mean dissipative force); returns the energy the dissipation
+  /// split removed [J]. Leaves the accepted state untouched.
+  double kick_drift_kick(const MechanicalSystem& sys, const Vec& y0, const Vec& f0, double t0,
+                         double h, double t_new) {
     t_new_ = t_new;
     double dissipated = 0.0;
     // Kick: p_half = p + h/2 F(q, p); positions unchanged. With the split, the dissipative
     // forces follow at fixed positions, implicitly: together a backward Euler half step of
     // the momenta, so the positions drift with damped momenta.
-    y_new_.noalias() = y_ + (0.5 * h) * mask_.cwiseProduct(f_);
-    if (split_) dissipated += sys.dissipate(t_, 0.5 * h, y_, y_new_);
+    y_new_.noalias() = y0 + (0.5 * h) * mask_.cwiseProduct(f0);
+    if (split_) dissipated += sys.dissipate(t0, 0.5 * h, y0, y_new_);
     // Drift: q_new = q + h G(p_half) (or the system's own flow, MechanicalSystem::drift).
     if (drift_) {
       sys.drift(h, y_new_);
@@ -234,7 +275,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     }
     // Closing kick with F at the new positions and the predicted momentum p*.
     p_half_ = y_new_;
-    y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(f_);
+    y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(f0);
     forces(sys, t_new, y_new_, f_new_);
     ++counters_.rhs_evaluations;
     y_new_.noalias() = p_half_ + (0.5 * h) * mask_.cwiseProduct(f_new_);
@@ -242,7 +283,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
       y_ref_ = y_new_;
       dissipated += sys.dissipate(t_new, 0.5 * h, y_ref_, y_new_);
       fd_new_ = (2.0 / h) * (y_new_ - y_ref_);
-      sys.correct_step(y_, y_new_);
+      sys.correct_step(y0, y_new_);
     } else {
       fd_new_.setZero();
     }
@@ -356,6 +397,12 @@ class VerletStepper final : public Stepper, public VerletInfo {
   static constexpr double kDown = 0.05;
   static constexpr int kPatience = 20;
 
+  /// The bookkeeping at the start of the last accepted step (retake() restores it).
+  struct StepStart {
+    double k_net = 0.0, k_gap = 0.0, h_last = 0.0, offset = 0.0, dissipated = 0.0;
+    double t_end = 0.0;  ///< the step's end as step() took it [s]
+  };
+
   double h_fixed_;             ///< nominal step, the grid step with an energy budget [s]
   double budget_;              ///< bound on Verlet's bounded energy term per sub-step [J]
   double h_min_;               ///< no sub-step below this [s]
@@ -388,6 +435,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
   double h_last_ = 0.0;         ///< size of the last accepted step [s]
   double offset_ = 0.0;         ///< accumulated change of E - T_net + D at step-size switches [J]
   double dissipated_ = 0.0;     ///< energy the dissipative halves removed [J]
+  StepStart start_;             ///< the last accepted step's start
   SolverCounters counters_;
   const OdeSystem* system_ = nullptr;             ///< the system of the last take()
   const MechanicalSystem* mechanical_ = nullptr;  ///< ... as a mechanical system
