@@ -27,9 +27,7 @@ struct DesignOptions {
   bool tune_nominal = false;
   double mass = 0.15, inertia = 0.20, leg_stiffness = 0.15;
   double friction_lo = 0.6, friction_hi = 1.2;
-  /// Tuning trials per evaluation: with 16 the family's tuned designs held every tuning trial
-  /// and 29-30 of 32 held-out ones; 24 leave the optimizer less to fit.
-  long scenarios = 24;
+  long scenarios = 16;     ///< tuning trials per evaluation
   long validation = 32;    ///< held-out trials
   double duration = 10.0;  ///< simulated seconds per trial
   long seed = 1;           ///< every draw and the optimizers' seeds derive from it

@@ -7,7 +7,6 @@
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/load/scene_loader.hpp"
-#include "sim/ode/solver.hpp"
 #include "sim/scene/robot_scaling.hpp"
 #include "sim/scene/stride_response.hpp"
 
@@ -72,28 +71,11 @@ Derived derive_overrides(const json& doc, const std::string& file, const scene::
   // thrust that its trim, at the default limit, cannot hold against the stance feedback it
   // tunes; at 0.4 the tripod's design stabilized 96.9 % of its held-out trials, 90.6 % at 0.2.
   // A scene that sets the limit keeps its own.
-  // Verlet restarts at the touchdowns and foot switches from its own step cut at the event
-  // (the energy balance's error then converges with the step; from the interpolant it does
-  // not, and auto reruns a third to a half of a family's perturbed trials): the same trials at
-  // about 60 % of the cost. A scene that names its restart, or a method other than verlet,
-  // keeps its own.
-  const json restart = json{{"event_restart", "step"}};
   if (!doc.contains("pseudo_rigid")) {
-    d.overrides.push_back(
-        "/pseudo_rigid=" +
-        json{{"attitude_trim_max", kAttitudeTrimMax}, {"solver", restart}}.dump());
-  } else if (doc.at("pseudo_rigid").is_object()) {
-    const json& p = doc.at("pseudo_rigid");
-    if (!p.contains("attitude_trim_max")) {
-      d.overrides.push_back("/pseudo_rigid/attitude_trim_max=" + number(kAttitudeTrimMax));
-    }
-    const bool verlet_possible =
-        s.pseudo_rigid.solver_auto || s.pseudo_rigid.solver.method == ode::Method::kVerlet;
-    if (!p.contains("solver")) {
-      d.overrides.push_back("/pseudo_rigid/solver=" + restart.dump());
-    } else if (verlet_possible && !p.at("solver").contains("event_restart")) {
-      d.overrides.push_back("/pseudo_rigid/solver/event_restart=\"step\"");
-    }
+    d.overrides.push_back("/pseudo_rigid=" + json{{"attitude_trim_max", kAttitudeTrimMax}}.dump());
+  } else if (doc.at("pseudo_rigid").is_object() &&
+             !doc.at("pseudo_rigid").contains("attitude_trim_max")) {
+    d.overrides.push_back("/pseudo_rigid/attitude_trim_max=" + number(kAttitudeTrimMax));
   }
   json full_doc = with_overrides(doc, d.overrides);
   full_doc["model"] = "pseudo_rigid";

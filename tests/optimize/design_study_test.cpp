@@ -140,31 +140,6 @@ TEST_CASE("pronk design: the attitude trim's limit is raised unless the scene se
   CHECK(io::parse_scene(tripod, family("tripod")).pseudo_rigid.attitude_trim_max == 0.2);
 }
 
-TEST_CASE("pronk design: verlet restarts from its retaken step unless the scene says otherwise",
-          "[design]") {
-  // The restart the derived study's full model runs with, read back from the scene it resolves.
-  auto restart = [](json scene, const std::string& file) {
-    json study = derive_design_study(scene, file, "scene.json", DesignOptions{});
-    for (const auto& o : study.at("scene_overrides")) io::apply_override(scene, o);
-    return io::parse_scene(scene, file).pseudo_rigid.solver.event_restart;
-  };
-  using pronk::ode::EventRestart;
-  json tripod = io::read_json_file(family("tripod"));  // no pseudo_rigid section
-  CHECK(restart(tripod, family("tripod")) == EventRestart::kStep);
-  const std::string pr = std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json";
-  json pr_running = io::read_json_file(pr);  // its own pseudo_rigid section, no solver
-  CHECK(restart(pr_running, pr) == EventRestart::kStep);
-  pr_running["pseudo_rigid"]["solver"] = {{"method", "verlet"}, {"h_fixed", 1e-4}};
-  CHECK(restart(pr_running, pr) == EventRestart::kStep);
-  pr_running["pseudo_rigid"]["solver"]["event_restart"] = "interpolant";  // the scene's own
-  CHECK(restart(pr_running, pr) == EventRestart::kInterpolant);
-  // Another method has no retaken step: nothing is added (it would be an unused setting).
-  pr_running["pseudo_rigid"]["solver"] = {{"method", "rodas4"}};
-  CHECK(restart(pr_running, pr) == EventRestart::kInterpolant);
-  CHECK(io::parse_scene(tripod, family("tripod")).pseudo_rigid.solver.event_restart ==
-        EventRestart::kInterpolant);  // the scene's default
-}
-
 TEST_CASE("pronk design: --tune-nominal keeps the tuning robot nominal, not the validation",
           "[design]") {
   const json scene = io::read_json_file(family("tripod"));
