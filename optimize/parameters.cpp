@@ -17,8 +17,13 @@ double Parameter::to_unit(double value) const {
 
 double Parameter::from_unit(double u) const {
   u = std::clamp(std::isfinite(u) ? u : 0.0, 0.0, 1.0);
-  if (log_scale) return std::exp(std::log(lower) + u * (std::log(upper) - std::log(lower)));
-  return lower + u * (upper - lower);
+  // Clamped: exp(log(lower)) can round a double below lower (and the same at upper), and a
+  // value outside its own bounds is refused when the tuned design is read back.
+  if (log_scale) {
+    return std::clamp(std::exp(std::log(lower) + u * (std::log(upper) - std::log(lower))), lower,
+                      upper);
+  }
+  return std::clamp(lower + u * (upper - lower), lower, upper);
 }
 
 std::vector<double> physical_values(const std::vector<Parameter>& params,
