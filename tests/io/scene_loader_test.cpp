@@ -786,3 +786,20 @@ TEST_CASE("pulse_aware_hop needs a known stance duration", "[io][scene]") {
   doc["controller"]["pulse_aware_hop"] = "yes";
   CHECK_THROWS_AS(pronk::io::parse_scene(doc, "duty50.json"), pronk::io::InputError);
 }
+
+TEST_CASE("verlet's event restart is read, written back only when not the default, and checked",
+          "[io][scene]") {
+  json doc = io::read_json_file(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json");
+  const scene::Scene plain = io::parse_scene(doc, "scene.json");
+  CHECK(plain.pseudo_rigid.solver.event_restart == pronk::ode::EventRestart::kInterpolant);
+  // Absent at its default: the scenes recorded before the setting existed keep their hash.
+  CHECK_FALSE(io::scene_to_json(plain)["pseudo_rigid"]["solver"].contains("event_restart"));
+  doc["pseudo_rigid"]["solver"] = {{"event_restart", "step"}};
+  const scene::Scene step = io::parse_scene(doc, "scene.json");
+  CHECK(step.pseudo_rigid.solver.event_restart == pronk::ode::EventRestart::kStep);
+  CHECK(io::scene_to_json(step)["pseudo_rigid"]["solver"]["event_restart"] == "step");
+  check_round_trip(doc);
+  doc["pseudo_rigid"]["solver"]["event_restart"] = "midpoint";
+  check_error(parse_error(doc), "/pseudo_rigid/solver/event_restart",
+              "one of \"interpolant\" \"step\"", "string \"midpoint\"");
+}
