@@ -253,12 +253,12 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
               {"max_steps", so.max_steps},
               {"max_steps_per_second", so.max_steps_per_second},
               {"energy_tol", p.energy_tol}}}};
-  // "auto" stays "auto" in the resolved scene: the choice depends on the run. The settings
-  // auto chooses are left out (the reader refuses them under auto).
   // Absent at its default: the scenes recorded before it existed keep their hash.
   if (so.event_restart != ode::EventRestart::kInterpolant) {
     j["solver"]["event_restart"] = std::string(ode::to_string(so.event_restart));
   }
+  // "auto" stays "auto" in the resolved scene: the choice depends on the run. The settings
+  // auto chooses are left out (the reader refuses them under auto).
   if (p.solver_auto) {
     j["solver"]["accuracy"] = p.accuracy;  // absent otherwise: unchanged
     for (const char* k : pseudorigid::kAutoChosenSettings) j["solver"].erase(k);

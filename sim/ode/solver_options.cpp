@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 
 #include "sim/ode/solver.hpp"
 
@@ -29,15 +30,27 @@ std::string_view to_string(Method m) {
   return "unknown";
 }
 
-bool parse_method(std::string_view name, Method* out) {
-  for (Method m : {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
-                   Method::kRadau5, Method::kCvodeBdf, Method::kVerlet}) {
-    if (name == to_string(m)) {
-      *out = m;
+namespace {
+
+/// The value of `all` whose to_string() is name into *out; false (out unchanged) for none.
+template <class E>
+bool parse_name(std::string_view name, std::initializer_list<E> all, E* out) {
+  for (E e : all) {
+    if (name == to_string(e)) {
+      *out = e;
       return true;
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool parse_method(std::string_view name, Method* out) {
+  return parse_name(name,
+                    {Method::kEuler, Method::kRk2, Method::kRk4, Method::kDopri5, Method::kRodas4,
+                     Method::kRadau5, Method::kCvodeBdf, Method::kVerlet},
+                    out);
 }
 
 std::string_view to_string(CvodeLinearSolver s) {
@@ -53,14 +66,8 @@ std::string_view to_string(CvodeLinearSolver s) {
 }
 
 bool parse_cvode_linear_solver(std::string_view name, CvodeLinearSolver* out) {
-  for (CvodeLinearSolver s :
-       {CvodeLinearSolver::kAuto, CvodeLinearSolver::kDense, CvodeLinearSolver::kKlu}) {
-    if (name == to_string(s)) {
-      *out = s;
-      return true;
-    }
-  }
-  return false;
+  return parse_name(
+      name, {CvodeLinearSolver::kAuto, CvodeLinearSolver::kDense, CvodeLinearSolver::kKlu}, out);
 }
 
 std::string_view to_string(EventRestart r) {
@@ -74,13 +81,7 @@ std::string_view to_string(EventRestart r) {
 }
 
 bool parse_event_restart(std::string_view name, EventRestart* out) {
-  for (EventRestart r : {EventRestart::kInterpolant, EventRestart::kStep}) {
-    if (name == to_string(r)) {
-      *out = r;
-      return true;
-    }
-  }
-  return false;
+  return parse_name(name, {EventRestart::kInterpolant, EventRestart::kStep}, out);
 }
 
 bool is_adaptive(Method m) {

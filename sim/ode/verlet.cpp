@@ -127,8 +127,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
       h = t_new - t_;
       if (!(h > 0.0)) return StepStatus::kStepSizeCollapse;
       dissipated = kick_drift_kick(sys, y_, f_, t_, h, t_new);
-      // (x * 0 is 0 for a finite x and NaN otherwise: one vectorised pass per vector.)
-      if (!std::isfinite((y_new_.array() * 0.0).sum() + (f_new_.array() * 0.0).sum())) {
+      if (!new_point_finite()) {
         ++counters_.steps_rejected;
         return StepStatus::kNonFinite;
       }
@@ -175,7 +174,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     const MechanicalSystem& sys = &system == system_ ? *mechanical_ : take(system);
     const double h = t - t_prev_;
     const double dissipated = kick_drift_kick(sys, y_prev_, f_prev_, t_prev_, h, t);
-    if (!std::isfinite((y_new_.array() * 0.0).sum() + (f_new_.array() * 0.0).sum())) return false;
+    if (!new_point_finite()) return false;
     double k_net = 0.0, k_gap = 0.0;
     if (metric_) net_terms(sys, f_new_, fd_new_, &k_net, &k_gap);
     y_ = y_prev_;
@@ -288,6 +287,12 @@ class VerletStepper final : public Stepper, public VerletInfo {
       fd_new_.setZero();
     }
     return dissipated;
+  }
+
+  /// True when the step in y_new_, f_new_ is finite (x * 0 is 0 for a finite x and NaN
+  /// otherwise: one vectorised pass per vector).
+  bool new_point_finite() const {
+    return std::isfinite((y_new_.array() * 0.0).sum() + (f_new_.array() * 0.0).sum());
   }
 
   /// The net force f + a fd per momentum block (a mass's three components; see
