@@ -253,8 +253,17 @@ Evaluation Evaluator::evaluate_impl(const std::vector<double>& unit, bool parall
     jobs[static_cast<size_t>(i)] = run_job(base, i);
     if (on_trial && i > 0) (*on_trial)();  // job 0 is the stability analysis, not a trial
   };
-  if (parallel) {
-    pool_->parallel_for(n + 1, job);
+  if (parallel && pool_->threads() > 1) {
+    // Longest first (job_schedule.hpp); each job writes its own slot.
+    const std::vector<long> order = schedule_->order(n + 1);
+    std::vector<double> seconds(static_cast<size_t>(n) + 1, 0.0);
+    pool_->parallel_for(n + 1, [&](long k) {
+      const long i = order[static_cast<size_t>(k)];
+      const auto start = std::chrono::steady_clock::now();
+      job(i);
+      seconds[static_cast<size_t>(i)] = seconds_since(start);
+    });
+    schedule_->record(std::move(seconds));
   } else {
     for (long i = 0; i <= n; ++i) job(i);
   }

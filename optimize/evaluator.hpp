@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "optimize/job_farm.hpp"
+#include "optimize/job_schedule.hpp"
 #include "optimize/objective.hpp"
 #include "optimize/parameters.hpp"
 #include "optimize/problem.hpp"
@@ -138,6 +139,8 @@ class Evaluator final : public Problem {
   long farm_id_ = -1;
   EvaluatorConfig config_;
   std::unique_ptr<ThreadPool> pool_;
+  /// Longest-first start order of an evaluation's jobs (the schedule only, not the numbers).
+  std::unique_ptr<JobSchedule> schedule_ = std::make_unique<JobSchedule>();
   /// Fast binding: when every parameter names a plain number field of the
   /// scene whose validity rule its bounds already satisfy, parameters are
   /// written straight into a copy of the parsed scene (no JSON round trip).

@@ -100,6 +100,27 @@ class StudyProblem final : public Problem {
     std::lock_guard<std::mutex> lock(m_);
     return static_cast<long>(pos_);
   }
+  /// Keeps a journaled evaluation when it is the first or the lowest-cost one so far: the
+  /// study evaluates its starting and its tuned design once more in full at the end, and
+  /// an evaluation is a pure function of x (the same numbers; two kept at most).
+  void remember(const Evaluation& e) const {
+    std::lock_guard<std::mutex> lock(m_);
+    if (!first_) {
+      first_ = e;
+    } else if (e.ok && (!lowest_ || e.cost < lowest_->cost)) {
+      lowest_ = e;
+    }
+  }
+  /// The full evaluation of x, kept by remember() or made now.
+  Evaluation evaluate_full(const std::vector<double>& x) const {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      for (const auto* kept : {&first_, &lowest_}) {
+        if (*kept && (*kept)->unit == x) return **kept;
+      }
+    }
+    return ev_.evaluate_full(x);
+  }
 
  private:
   bool take_replay(const std::vector<double>& x, ProblemEvaluation* p) const {
@@ -120,6 +141,7 @@ class StudyProblem final : public Problem {
   mutable std::vector<JournalRecord> replay_;
   mutable size_t pos_ = 0;
   mutable std::map<std::vector<double>, std::deque<Evaluation>> cache_;
+  mutable std::optional<Evaluation> first_, lowest_;
   mutable std::mutex m_;
 };
 
@@ -141,7 +163,8 @@ class JournalObserver final : public EvaluationObserver {
     if (feasible && e.cost < best_) best_ = e.cost;
     if (index >= recorded_) {
       Evaluation full;
-      if (!problem_.take(x, &full)) {
+      const bool evaluated = problem_.take(x, &full);
+      if (!evaluated) {
         full.unit = x;
         full.ok = e.ok;
         full.cost = e.cost;
@@ -150,6 +173,7 @@ class JournalObserver final : public EvaluationObserver {
       }
       timings_.write(index, full);  // first: a kill between the two leaves a spare line
       journal_.append(journal_record(index, purpose, full, names_));
+      if (evaluated) problem_.remember(full);
     }
     progress_.update(index + 1, "best feasible cost " +
                                     (std::isfinite(best_) ? std::to_string(best_) : "(none yet)"));
@@ -271,7 +295,6 @@ void write_design_run(const std::string& dir, const Evaluator& ev, const std::ve
   const RunResult r = simulate(s);
   io::write_simulation_outputs(dir, s, r, reduced::compute_metrics(s, r.run));
 }
-
 
 json journal_header(const Study& st, const Evaluator& ev) {
   return {{"type", "header"},
@@ -419,9 +442,9 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   o.replayed = problem.replayed();
 
   // The starting and the tuned design, fully evaluated (deterministic: same numbers as recorded).
-  o.initial = evaluator.evaluate_full(evaluator.initial_point());
-  o.best = evaluator.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point()
-                                                           : o.result.best_x);
+  o.initial = problem.evaluate_full(evaluator.initial_point());
+  o.best =
+      problem.evaluate_full(o.result.best_x.empty() ? evaluator.initial_point() : o.result.best_x);
   std::optional<Evaluator> val;
   if (st.validation) run_validation(st, opt, t0, o, val);
   o.wall_time = monotonic_seconds() - t0;

@@ -236,27 +236,26 @@ void MechanismSystem::rigid_rates(const ode::Vec& y, ode::Vec& dydt) const {
   }
 }
 
-const MechanismSystem::RigidState& MechanismSystem::rigid_pose(int b, const ode::Vec& y) const {
+// rigid_pose's miss: the rotation follows the quaternion alone (an impulse, a new angular
+// momentum, keeps it).
+const MechanismSystem::RigidState& MechanismSystem::update_rigid_pose(int b,
+                                                                      const ode::Vec& y) const {
   RigidState& k = rigid_[static_cast<size_t>(b)];
   const int r = rot_[static_cast<size_t>(b)];
-  // The rotation follows the quaternion alone: an impulse (a new angular momentum) keeps it.
-  if (y[r] != k.key[0] || y[r + 1] != k.key[1] || y[r + 2] != k.key[2] || y[r + 3] != k.key[3]) {
-    k.key.head<4>() = y.segment<4>(r);
-    k.key.tail<3>().setConstant(std::numeric_limits<double>::quiet_NaN());  // omega stale
-    k.rotation = rigid_rotation(y, r);
-    k.inverse_inertia = rigid_inverse_inertia(m_.bodies[static_cast<size_t>(b)], k.rotation);
-  }
+  k.key.head<4>() = y.segment<4>(r);
+  k.key.tail<3>().setConstant(std::numeric_limits<double>::quiet_NaN());  // omega stale
+  k.rotation = rigid_rotation(y, r);
+  k.inverse_inertia = rigid_inverse_inertia(m_.bodies[static_cast<size_t>(b)], k.rotation);
   return k;
 }
 
-const MechanismSystem::RigidState& MechanismSystem::rigid_state(int b, const ode::Vec& y) const {
-  rigid_pose(b, y);
+// rigid_state's miss: the angular velocity at the memo's rotation (rigid_pose current).
+const MechanismSystem::RigidState& MechanismSystem::update_rigid_omega(int b,
+                                                                       const ode::Vec& y) const {
   RigidState& k = rigid_[static_cast<size_t>(b)];
   const int r = rot_[static_cast<size_t>(b)];
-  if (!(y[r + 4] == k.key[4] && y[r + 5] == k.key[5] && y[r + 6] == k.key[6])) {
-    k.key.tail<3>() = y.segment<3>(r + 4);
-    k.omega = rigid_omega(m_.bodies[static_cast<size_t>(b)], k.rotation, seg(y, r + 4));
-  }
+  k.key.tail<3>() = y.segment<3>(r + 4);
+  k.omega = rigid_omega(m_.bodies[static_cast<size_t>(b)], k.rotation, seg(y, r + 4));
   return k;
 }
 

@@ -113,12 +113,24 @@ class MechanismSystem final : public ode::MechanicalSystem {
 
   /// Body frames (attitude, CoM) at y; valid until the next call.
   const std::vector<BodyFrame>& frames(const ode::Vec& y) const;
+  // (inline: hot; a rigid body's ghost point as point_position and point_velocity give it)
   Eigen::Vector3d node_position(const NodeRef& n, const ode::Vec& y) const {
-    if (n.kind == NodeRef::Kind::kMass) return y.segment<3>(6 * n.index);  // (inline: hot)
+    if (n.kind == NodeRef::Kind::kMass) return y.segment<3>(6 * n.index);
+    if (rigid_node(n)) {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      return y.segment<3>(6 * m_.bodies[g.body].first_mass) +
+             rigid_pose(g.body, y).rotation * g.local;
+    }
     return point_position(n, y);
   }
   Eigen::Vector3d node_velocity(const NodeRef& n, const ode::Vec& y) const {
     if (n.kind == NodeRef::Kind::kMass) return y.segment<3>(6 * n.index + 3) * inv_mass_[n.index];
+    if (rigid_node(n)) {
+      const GhostPoint& g = m_.ghost_points[n.index];
+      const int f = m_.bodies[g.body].first_mass;
+      const RigidState& k = rigid_state(g.body, y);
+      return y.segment<3>(6 * f + 3) * inv_mass_[f] + k.omega.cross(k.rotation * g.local);
+    }
     return point_velocity(n, y);
   }
   Eigen::Vector3d reference_position(int i, const ode::Vec& y) const;
@@ -214,7 +226,13 @@ class MechanismSystem final : public ode::MechanicalSystem {
                             PairSeen* seen = nullptr) const;
   /// Rigid body b's rotation and angular velocity at y, memoised (a pure function of its 7
   /// rotation states, compared exactly: one RHS reads them for every ghost point).
-  const RigidState& rigid_state(int b, const ode::Vec& y) const;
+  const RigidState& rigid_state(int b, const ode::Vec& y) const {
+    const RigidState& k = rigid_pose(b, y);  // (inline: hot; the memo's miss out of line)
+    const int r = rot_[static_cast<size_t>(b)];
+    if (y[r + 4] == k.key[4] && y[r + 5] == k.key[5] && y[r + 6] == k.key[6]) return k;
+    return update_rigid_omega(b, y);
+  }
+  const RigidState& update_rigid_omega(int b, const ode::Vec& y) const;
   /// Rigid body b's world inverse inertia in the attitude of the last frames_ (from the
   /// rigid_pose memo when that is at the same rotation).
   Eigen::Matrix3d frame_inverse_inertia(size_t b) const;
@@ -225,7 +243,14 @@ class MechanismSystem final : public ode::MechanicalSystem {
   void begin_memo(const ode::Vec& y) const;
   /// rigid_state without the angular velocity (rotation and world inverse inertia, memoised
   /// on the quaternion alone; omega is not current in the result).
-  const RigidState& rigid_pose(int b, const ode::Vec& y) const;
+  const RigidState& rigid_pose(int b, const ode::Vec& y) const {
+    const RigidState& k = rigid_[static_cast<size_t>(b)];  // (inline: hot; the miss out of line)
+    const int r = rot_[static_cast<size_t>(b)];
+    if (y[r] == k.key[0] && y[r + 1] == k.key[1] && y[r + 2] == k.key[2] && y[r + 3] == k.key[3])
+      return k;
+    return update_rigid_pose(b, y);
+  }
+  const RigidState& update_rigid_pose(int b, const ode::Vec& y) const;
   /// dissipate()'s implicit velocity updates of the dampers, friction and drag of the
   /// connections, then of the surfaces' dampers and friction (momenta of y only).
   void dissipate_connections(double h, ode::Vec& y) const;
