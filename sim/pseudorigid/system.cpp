@@ -116,42 +116,21 @@ const std::vector<BodyFrame>& MechanismSystem::frames(const ode::Vec& y) const {
 }
 
 Vector3d MechanismSystem::point_position(const NodeRef& n, const ode::Vec& y) const {
-  switch (n.kind) {
-    case NodeRef::Kind::kMass:
-      return seg(y, 6 * n.index);
-    case NodeRef::Kind::kGhost: {
-      const GhostPoint& g = m_.ghost_points[n.index];
-      const int f = m_.bodies[g.body].first_mass;
-      if (rot_[g.body] >= 0) return seg(y, 6 * f) + rigid_pose(g.body, y).rotation * g.local;
-      Vector3d x = Vector3d::Zero();
-      for (int i = 0; i < 4; ++i) x += g.weights[i] * seg(y, 6 * (f + i));
-      return x;
-    }
-    case NodeRef::Kind::kAnchor:
-      return m_.anchors[n.index].position;
-  }
-  return Vector3d::Zero();
+  if (n.kind == NodeRef::Kind::kAnchor) return m_.anchors[n.index].position;
+  const GhostPoint& g = m_.ghost_points[n.index];  // of a four-mass body: barycentric
+  const int f = m_.bodies[g.body].first_mass;
+  Vector3d x = Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) x += g.weights[i] * seg(y, 6 * (f + i));
+  return x;
 }
 
 Vector3d MechanismSystem::point_velocity(const NodeRef& n, const ode::Vec& y) const {
-  switch (n.kind) {
-    case NodeRef::Kind::kMass:
-      return seg(y, 6 * n.index + 3) * inv_mass_[n.index];
-    case NodeRef::Kind::kGhost: {
-      const GhostPoint& g = m_.ghost_points[n.index];
-      const int f = m_.bodies[g.body].first_mass;
-      if (rot_[g.body] >= 0) {
-        const RigidState& k = rigid_state(g.body, y);
-        return seg(y, 6 * f + 3) * inv_mass_[f] + k.omega.cross(k.rotation * g.local);
-      }
-      Vector3d v = Vector3d::Zero();
-      for (int i = 0; i < 4; ++i) v += g.weights[i] * inv_mass_[f + i] * seg(y, 6 * (f + i) + 3);
-      return v;
-    }
-    case NodeRef::Kind::kAnchor:
-      return Vector3d::Zero();
-  }
-  return Vector3d::Zero();
+  if (n.kind == NodeRef::Kind::kAnchor) return Vector3d::Zero();
+  const GhostPoint& g = m_.ghost_points[n.index];  // of a four-mass body: barycentric
+  const int f = m_.bodies[g.body].first_mass;
+  Vector3d v = Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) v += g.weights[i] * inv_mass_[f + i] * seg(y, 6 * (f + i) + 3);
+  return v;
 }
 
 Vector3d MechanismSystem::reference_position(int i, const ode::Vec& y) const {

@@ -185,7 +185,8 @@ class MechanismSystem final : public ode::MechanicalSystem {
     return in_->surfaces[si].holds ? m_.surfaces[si].nodes : no_nodes_;
   }
   /// A rigid body's rotation and angular velocity at its last 7 rotation states (rigid_state).
-  /// node_position and node_velocity of a ghost point or an anchor.
+  /// node_position and node_velocity of what they do not compute inline: a ghost point of a
+  /// four-mass body (barycentric) or an anchor.
   Eigen::Vector3d point_position(const NodeRef& n, const ode::Vec& y) const;
   Eigen::Vector3d point_velocity(const NodeRef& n, const ode::Vec& y) const;
   struct RigidState {
