@@ -30,8 +30,8 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
       "motion.svg, view.html.");
   cmd->add_option("scene", args.scene_path, "Scene file (JSON)")->required();
   cmd->add_option("--model", args.model,
-                  "Model: impulse, pulse or pseudo_rigid (default: the scene's)")
-      ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid"}));
+                  "Model: impulse, pulse, pseudo_rigid or mujoco (default: the scene's)")
+      ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid", "mujoco"}));
   cmd->add_option("--set", args.overrides,
                   "Override a scene value: --set /json/pointer=value (repeatable)")
       ->type_name("/PTR=VALUE");
@@ -109,10 +109,17 @@ void print_robot_run(const scene::Scene& scene, const RunResult& r,
               metrics.max_apex_error, metrics.mean_duty, metrics.max_duty);
   if (r.full_model()) {
     const auto& m = r.monitors;
-    std::printf(
-        "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g "
-        "m, max slip %.3g m\n",
-        m.energy_drift, m.drift_relative(), m.max_strain, m.max_penetration, m.max_slip);
+    if (m.energy_measured) {
+      std::printf(
+          "  energy balance drift %.3g J (%.3g of scale), max strain %.3g, max penetration %.3g "
+          "m, max slip %.3g m\n",
+          m.energy_drift, m.drift_relative(), m.max_strain, m.max_penetration, m.max_slip);
+    } else {
+      std::printf(
+          "  energy balance not monitored (MuJoCo's contact and dampers dissipate by its own "
+          "laws), max penetration %.3g m, max slip %.3g m\n",
+          m.max_penetration, m.max_slip);
+    }
     std::printf("  cost: %ld steps (%ld rejected), %ld RHS, %ld Jacobians, %ld LU, %.3f ms\n",
                 c.steps_accepted, c.steps_rejected, c.rhs_evaluations, c.jacobian_evaluations,
                 c.lu_factorizations, r.run.cost.wall_time * 1e3);

@@ -60,7 +60,7 @@ void add_full_metrics(const scene::Scene& scene, const RunResult& r, MetricMap& 
 }  // namespace
 
 const std::vector<std::string>& metric_names(scene::ModelKind model) {
-  return model == scene::ModelKind::kPseudoRigid ? full_metric_names() : reduced_metric_names();
+  return scene::is_full_model(model) ? full_metric_names() : reduced_metric_names();
 }
 
 bool is_metric(const std::string& name) {

@@ -38,7 +38,7 @@ std::string check_stage_record(io::JsonReader s, const json& node, const json& s
                   "\"" + name + "\"");
   }
   require(s, "model");
-  s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+  s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
   required_string(s, "directory");
   read_numbers(
       s, node, "parameters", [](const std::string&) { return true; }, "");

@@ -117,7 +117,7 @@ StageSpec parse_stage(io::JsonReader s, const StagedStudy& st, const json& raw,
     if (e.name == stage.name) throw s.error("name", "a name no earlier stage has", stage.name);
   if (!s.has("model"))
     throw s.error("model", "the stage's model (impulse, pulse, pseudo_rigid)", "nothing");
-  stage.model = s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+  stage.model = s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
   stage.start = s.string_or("start", "previous");
   bool start_ok = stage.start == "previous" || stage.start == "initial";
   for (const auto& e : earlier) start_ok = start_ok || e.name == stage.start;

@@ -481,7 +481,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   apply_study_scene_overrides(r, doc, file, &scene_doc);
   // A study-level "model" runs every scenario in that model, whatever the scene says.
   if (r.has("model")) {
-    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid"});
+    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
   } else {
     r.optional("model");
   }
@@ -508,7 +508,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   }
   parse_study_objective(r, file, scene0.model, &ec);
   ec.stability = r.boolean_or("stability", true);
-  if (ec.stability && scene0.model == scene::ModelKind::kPseudoRigid &&
+  if (ec.stability && scene::is_full_model(scene0.model) &&
       !scene0.pseudo_rigid.actuators) {
     throw r.error("stability",
                   "false for passive legs: the full model's stride-map fit needs a controlled gait",

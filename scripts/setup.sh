@@ -12,9 +12,10 @@ pkgs+=(pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy 
 pkgs+=(python3-pip python3-venv python3-setuptools python3-wheel)
 # The fuzzer needs clang 14 with its sanitizer runtimes; only the test job asks for it.
 if [[ "${PRONK_WITH_FUZZ:-0}" == 1 ]]; then pkgs+=(clang-14 libclang-rt-14-dev); fi
-# The optional MuJoCo peer of `pronk bench` (the CVODE peer uses the SUNDIALS installed
-# above); CMake builds the peers when found.
-if [[ "${PRONK_WITH_PEERS:-0}" == 1 ]]; then pkgs+=(libmujoco-dev); fi
+# MuJoCo 2.2: the fourth fidelity, "model": "mujoco", and the MuJoCo peer of `pronk bench`
+# (the CVODE peer uses the SUNDIALS installed above). pronk builds without it (CMake says so and
+# such scenes are refused); PRONK_WITHOUT_MUJOCO=1 leaves it out.
+if [[ "${PRONK_WITHOUT_MUJOCO:-0}" != 1 ]]; then pkgs+=(libmujoco-dev); fi
 # The pages (view.html, report.html) and their browser test: Node, npm and Chromium; the test
 # job (scripts/test.sh) asks for them. Node and npm may come from elsewhere (command found).
 web=${PRONK_WITH_WEB:-0}

@@ -44,6 +44,7 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
       r = run_reduced(scene, options);
       break;
     case scene::ModelKind::kPseudoRigid:
+    case scene::ModelKind::kMujoco:
       r = run_full(scene, options);
       break;
   }
@@ -52,12 +53,12 @@ RunResult simulate(const scene::Scene& scene, const RunOptions& options) {
 }
 
 void check_buildable(const scene::Scene& scene) {
-  if (scene.model == scene::ModelKind::kPseudoRigid) robot::build_robot(scene);
+  if (scene::is_full_model(scene.model)) robot::build_robot(scene);
 }
 
 StabilityEstimate analyze_stability(const scene::Scene& scene, double penalty) {
   StabilityEstimate e;
-  if (scene.model == scene::ModelKind::kPseudoRigid) {
+  if (scene::is_full_model(scene.model)) {
     // No touchdown state can start the full model: fit the map to disturbed runs.
     RunOptions o;
     o.record_trajectory = false;

@@ -24,7 +24,7 @@ struct RunOptions {
 /// per-stride actuator forces and slips, and accuracy monitors (empty otherwise).
 struct RunResult : robot::RobotRunResult {
   scene::ModelKind model = scene::ModelKind::kImpulse;
-  bool full_model() const { return model == scene::ModelKind::kPseudoRigid; }
+  bool full_model() const { return scene::is_full_model(model); }
 };
 
 /// Simulates `scene` in scene.model. Numerical trouble ends the run with a status

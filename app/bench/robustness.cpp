@@ -95,7 +95,7 @@ LadderRobustness ladder_robustness(const BenchConfig& c) {
     out.seed = st.trials.seed;
     out.trial_duration = st.trial_set.duration;
     out.resolution = st.resolution;
-    if (c.quick && st.primary_model() == scene::ModelKind::kPseudoRigid) {
+    if (c.quick && scene::is_full_model(st.primary_model())) {
       RungRobustness r;
       r.model = model;
       r.available = false;

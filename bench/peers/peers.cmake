@@ -1,6 +1,5 @@
 # Peers of `pronk bench` (docs/performance.md): separate executables, built only when their
-# Debian packages are installed (scripts/setup.sh installs them with
-# PRONK_WITH_PEERS=1). `pronk bench` runs the ones it finds beside itself and
+# Debian packages are installed (scripts/setup.sh installs them). `pronk bench` runs the ones it finds beside itself and
 # merges their JSON output; without them it reports them as unavailable.
 
 # SUNDIALS CVODE 6.x (libsundials-dev): plain find_library, because the package's
@@ -29,10 +28,8 @@ else()
   message(STATUS "pronk bench peer: SUNDIALS CVODE not found (optional; libsundials-dev)")
 endif()
 
-# MuJoCo 2.2 (libmujoco-dev).
-find_path(PRONK_MUJOCO_INCLUDE_DIR mujoco/mujoco.h)
-find_library(PRONK_MUJOCO_LIB mujoco)
-if(PRONK_MUJOCO_INCLUDE_DIR AND PRONK_MUJOCO_LIB)
+# MuJoCo 2.2 (libmujoco-dev; found in CMakeLists.txt).
+if(PRONK_HAVE_MUJOCO)
   message(STATUS "pronk bench peer: MuJoCo found (${PRONK_MUJOCO_LIB})")
   add_executable(pronk_peer_mujoco bench/peers/mujoco_peer.cpp)
   target_link_libraries(pronk_peer_mujoco PRIVATE ${PRONK_MUJOCO_LIB} nlohmann_json::nlohmann_json)

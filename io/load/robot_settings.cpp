@@ -284,9 +284,33 @@ void add_defaulted_settings(json* resolved_scene) {
   }
 }
 
+namespace {
+/// "model": "mujoco": MuJoCo steps the robot with its rigid body, joint hips and its own contact
+/// solver, so the pseudo-rigid engine's body, hips, slides, friction regularisation and solver
+/// settings do nothing; the legs, feet, contact, friction and controller settings are used.
+std::vector<std::string> mujoco_unused_settings(const scene::Scene& s) {
+  std::vector<std::string> out = {"/attitude", "/simulation/solver"};
+  for (const char* k : {"body", "hips", "dummy_ratio", "internal_stiffness", "internal_damping",
+                        "strain_budget", "penetration_budget", "slip_velocity",
+                        "energy_blowup_factor", "error_norm", "solver"}) {
+    out.push_back(std::string("/pseudo_rigid/") + k);
+  }
+  out.push_back("/pulse/gravity_compensation");
+  if (s.pseudo_rigid.thrust == Thrust::kEnergy && !s.controller.pulse_aware_hop &&
+      s.pseudo_rigid.actuator_max_force == 0.0) {
+    out.push_back("/pulse/duration");
+  }
+  if (!s.pseudo_rigid.hip_rotation) out.push_back("/pseudo_rigid/level_feet");
+  return out;
+}
+}  // namespace
+
 std::vector<std::string> unused_settings(const scene::Scene& s) {
   std::vector<std::string> out;
   switch (s.model) {
+    case scene::ModelKind::kMujoco:
+      out = mujoco_unused_settings(s);
+      break;
     case scene::ModelKind::kImpulse:
       out = {"/pulse", "/pseudo_rigid"};
       if (!s.controller.hop_height_changes.empty()) {

@@ -64,7 +64,7 @@ void resolve_controller(const GivenSettings& given, const std::string& file, sce
 // poles are placed at kPositionPoles on the design stride (the pulse model's PD defaults
 // left the tripod and the hexapod falling behind or running ahead within 7 s).
 void full_model_position_loop(const GivenSettings& given, scene::Scene* s) {
-  if (s->model != scene::ModelKind::kPseudoRigid || s->legs.body_only) return;
+  if (!scene::is_full_model(s->model) || s->legs.body_only) return;
   if (given.gains || given.kp || given.kd || given.position_trim_gain) return;
   const scene::PositionLoop l = scene::default_position_loop(*s);
   s->controller.kp[0] = l.kp * s->body.mass;

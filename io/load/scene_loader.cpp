@@ -345,6 +345,7 @@ void check_run_limits(const scene::Scene& s, const std::string& file) {
   if (const auto b = reduced::memory_limit_breach(s.simulation, true, true)) {
     throw InputError(file, "/simulation/" + b->field, b->expected, b->found);
   }
+  if (s.model == scene::ModelKind::kMujoco) return;  // MuJoCo's step: check_mujoco_scene
   const bool full = s.model == scene::ModelKind::kPseudoRigid;
   if (full && s.pseudo_rigid.solver_auto) return;  // auto chooses its own step
   if (const auto b =
@@ -352,6 +353,39 @@ void check_run_limits(const scene::Scene& s, const std::string& file) {
     throw InputError(file, full ? "/pseudo_rigid/solver/h_fixed" : "/simulation/solver/h_fixed",
                      b->expected, b->found);
   }
+}
+
+// "model": "mujoco" builds the robot with feet on slide joints (sim/mujoco/robot_mjcf.hpp).
+void check_mujoco_scene(const scene::Scene& s, const std::string& file) {
+  if (s.legs.body_only) {
+    throw InputError(file, "/legs/kind", "\"legged\" (MuJoCo runs the robot with its legs)",
+                     "\"body_only\"");
+  }
+  if (s.pseudo_rigid.legs != scene::PseudoRigid::Legs::kSpring) {
+    throw InputError(file, "/pseudo_rigid/legs",
+                     "\"spring\" (MuJoCo's legs are spring-damper slides with feet)",
+                     "\"force\"");
+  }
+  if (!(s.pseudo_rigid.foot_mass > 0.0)) {
+    throw InputError(file, "/pseudo_rigid/foot_mass", "a foot mass > 0 kg for MuJoCo's feet",
+                     number_text(s.pseudo_rigid.foot_mass));
+  }
+  const double flight = std::sqrt(2.0 * s.controller.hop_height / std::max(s.gravity, 1e-9));
+  if (s.mujoco.timestep > 0.1 * flight) {
+    throw InputError(file, "/mujoco/timestep",
+                     "a step below a tenth of the hop's fall time (" +
+                         number_text(0.1 * flight) + " s)",
+                     number_text(s.mujoco.timestep));
+  }
+}
+
+// "mujoco": MuJoCo's integrator and step.
+void parse_scene_mujoco(JsonReader r, scene::Mujoco* m) {
+  m->timestep = r.number_or("timestep", m->timestep, 1e-6, 0.1);
+  const std::string integrator = r.choice_or("integrator", "euler", {"euler", "rk4"});
+  m->integrator = integrator == "rk4" ? scene::Mujoco::Integrator::kRk4
+                                      : scene::Mujoco::Integrator::kEuler;
+  r.finish();
 }
 
 // The checks across sections, after every section is read.
@@ -364,6 +398,7 @@ void check_scene_consistency(const scene::Scene& s, const std::string& file) {
         "true with pulse mode \"max_force\"");
   }
   check_run_limits(s, file);
+  if (s.model == scene::ModelKind::kMujoco) check_mujoco_scene(s, file);
   if (!(s.initial.position.z() > s.simulation.fall_min_height)) {
     throw InputError(
         file, "/initial/position/2",
@@ -375,10 +410,18 @@ void check_scene_consistency(const scene::Scene& s, const std::string& file) {
 // The top-level scalars: name, model, gravity, attitude formulation.
 void parse_scene_header(JsonReader& r, scene::Scene* s) {
   s->name = r.path_name_or("name", "scene");  // the default output directory out/<name>
-  const std::string model = r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid"});
+  const std::string model =
+      r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
   s->model = model == "pulse"          ? scene::ModelKind::kPulse
              : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid
+             : model == "mujoco"       ? scene::ModelKind::kMujoco
                                        : scene::ModelKind::kImpulse;
+  if (s->model == scene::ModelKind::kMujoco && !scene::mujoco_available()) {
+    throw InputError(r.file(), "/model",
+                     "impulse, pulse or pseudo_rigid (this pronk was built without MuJoCo: "
+                     "install Debian's libmujoco-dev, e.g. with bash scripts/setup.sh, and rebuild)",
+                     "\"mujoco\"");
+  }
   s->gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
   const std::string att =
       r.choice_or("attitude", "quaternion", {"quaternion", "small_angle_euler123"});
@@ -429,6 +472,10 @@ scene::Scene parse_scene(const json& doc, const std::string& file) {
     parse_pseudo_rigid(r.object("pseudo_rigid"), doc.at("pseudo_rigid"), &s.pseudo_rigid, &given);
   else
     r.optional("pseudo_rigid");
+  if (r.has("mujoco"))
+    parse_scene_mujoco(r.object("mujoco"), &s.mujoco);
+  else
+    r.optional("mujoco");
   if (r.has("initial")) {
     parse_scene_initial(r.object("initial"), &s.initial);
   } else {
@@ -521,6 +568,11 @@ json scene_to_json(const scene::Scene& s) {
                 {"duration", s.pulse.duration},
                 {"gravity_compensation", s.pulse.gravity_compensation}};
   j["pseudo_rigid"] = pseudo_rigid_to_json(s.pseudo_rigid);
+  if (s.model == scene::ModelKind::kMujoco) {
+    j["mujoco"] = {{"timestep", s.mujoco.timestep},
+                   {"integrator",
+                    s.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "rk4" : "euler"}};
+  }
   const auto& q = s.initial.attitude;
   j["initial"] = {{"position", vec(s.initial.position)},
                   {"velocity", vec(s.initial.velocity)},

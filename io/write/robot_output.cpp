@@ -82,6 +82,14 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   j["cost"]["lu_factorizations"] = r.run.cost.solver.lu_factorizations;
   double max_slip_stance = 0.0;
   for (double s : r.stride_slip) max_slip_stance = std::max(max_slip_stance, s);
+  if (scene.model == scene::ModelKind::kMujoco) {
+    j["solver"] = {{"engine", "mujoco"},
+                   {"integrator", scene.mujoco.integrator == scene::Mujoco::Integrator::kRk4
+                                      ? "RK4"
+                                      : "Euler"},
+                   {"timestep", scene.mujoco.timestep}};
+  }
+  const bool mujoco = scene.model == scene::ModelKind::kMujoco;
   j["pseudo_rigid"] = {{"energy_scale_J", m.energy_scale},
                        {"energy_balance_drift_J", m.energy_drift},
                        {"energy_balance_drift_relative", m.drift_relative()},
@@ -95,6 +103,7 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
                        {"internal_stiffness_N_per_m", m.internal_stiffness},
                        {"contact_stiffness_N_per_m", m.contact_stiffness},
                        {"stiffness_note", m.stiffness.note}};
+  if (mujoco) j["pseudo_rigid"]["energy_balance_monitored"] = false;
   if (m.method_auto) {
     const pseudorigid::MethodChoice& c = m.method_choice;
     j["solver"] = solver_json(c.method, c.h_fixed, c.energy_tol, c.rtol, c.atol);
@@ -159,6 +168,8 @@ WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& s
                     dump_checked(robot_summary_json(scene, r, metrics, pulse)));
   write_file_atomic(dir + "/energy.csv", robot_energy_csv(r));
   write_file_atomic(dir + "/feet.csv", robot_feet_csv(r));
+  // A MuJoCo run's robot as MuJoCo's own model, for its viewer (keyframe "initial": the start).
+  if (!r.mjcf.empty()) write_file_atomic(dir + "/robot.xml", r.mjcf);
   const size_t legs = r.samples.empty() ? 0 : r.samples.front().actuator_force.size();
   const bool feet = !r.samples.empty() && !r.samples.front().normal_force.empty();
   w.figures_rendered &= render_figure(dir, "hop_forces", figure_hop(legs, feet));

@@ -176,7 +176,7 @@ json map_summary_settings(const MapStudy& st) {
   // How cells.csv's spectral_radius was obtained (the full model has no stride map to evaluate).
   j["spectral_radius_method"] =
       !st.stability ? "off"
-      : st.primary_model() == scene::ModelKind::kPseudoRigid
+      : scene::is_full_model(st.primary_model())
           ? "estimate: affine map fitted to the touchdowns of 4 perturbed runs of 6 s"
           : "stride map linearised by central differences";
   const auto& c = st.stabilized;

@@ -65,10 +65,10 @@ nlohmann::json mapplay_cell(const MapStudy& st, long cell, long max_rows) {
 
 nlohmann::json map_playback_json(const MapStudy& st) {
   const std::string model(scene::to_string(st.primary_model()));
-  if (st.primary_model() == scene::ModelKind::kPseudoRigid) {
+  if (scene::is_full_model(st.primary_model())) {
     return {{"model", model},
             {"skipped",
-             "no playback for a pseudo_rigid map: re-simulating one full-model trial per cell "
+             "no playback for a " + model + " map: re-simulating one full-model trial per cell "
              "would cost a fraction 1/trials of the whole map again"}};
   }
   const long cells = st.cells();

@@ -182,7 +182,12 @@ scene::ModelKind model_of(const std::string& file, const std::string& pointer, c
   if (v == "impulse") return scene::ModelKind::kImpulse;
   if (v == "pulse") return scene::ModelKind::kPulse;
   if (v == "pseudo_rigid") return scene::ModelKind::kPseudoRigid;
-  throw io::InputError(file, pointer, "\"impulse\", \"pulse\" or \"pseudo_rigid\"",
+  if (v == "mujoco" && scene::mujoco_available()) return scene::ModelKind::kMujoco;
+  throw io::InputError(file, pointer,
+                       scene::mujoco_available()
+                           ? "\"impulse\", \"pulse\", \"pseudo_rigid\" or \"mujoco\""
+                           : "\"impulse\", \"pulse\" or \"pseudo_rigid\" (this pronk was built "
+                             "without MuJoCo: install libmujoco-dev and rebuild for \"mujoco\")",
                        io::describe(v));
 }
 
@@ -244,7 +249,7 @@ DutySetting duty_setting(const scene::Scene& s) {
     return std::find(unused.begin(), unused.end(), p) != unused.end();
   };
   if (!is_unused("/pulse/duration")) return DutySetting::kPulseDuration;
-  if (s.model == scene::ModelKind::kPseudoRigid &&
+  if (scene::is_full_model(s.model) &&
       s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring &&
       !is_unused("/pseudo_rigid/leg_stiffness"))
     return DutySetting::kLegStiffness;
@@ -466,8 +471,8 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
   st.base_scene = io::parse_scene(scene_doc, st.scene_file);
   st.scene_doc = io::scene_to_json(st.base_scene);
   st.models = map_study_models(r, doc, file);
-  const bool full_model = std::find(st.models.begin(), st.models.end(),
-                                    scene::ModelKind::kPseudoRigid) != st.models.end();
+  const bool full_model =
+      std::any_of(st.models.begin(), st.models.end(), [](auto m) { return scene::is_full_model(m); });
   if (full_model)
     check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
   parse_map_study_axes(r, doc, file, &st);

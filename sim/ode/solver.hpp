@@ -173,6 +173,9 @@ class Stepper {
   /// a method that cannot (then restart from dense()), a t outside the step, or a retaken step
   /// that is not finite.
   virtual bool retake(const OdeSystem& /*sys*/, double /*t*/) { return false; }
+  /// An engine that steps on its own (MuJoCo): what it is and why a step failed, for the run's
+  /// reason ("MuJoCo Euler, step 0.001 s; warning ..."); empty for pronk's own methods.
+  virtual std::string failure_note() const { return {}; }
 };
 
 /// Creates the stepper of options.method for systems of dimension n. `norm`: the error norm

@@ -314,6 +314,7 @@ void RobotRun::finish(double t, const ode::Vec& y, const ode::Stepper& stepper) 
   auto finite_or = [](double& x) {
     if (!std::isfinite(x)) x = 1e300;
   };
+  if (!result.monitors.energy_measured) result.monitors.energy_drift = 0.0;
   finite_or(result.monitors.energy_drift);
   finite_or(result.monitors.max_strain);
   finite_or(result.monitors.max_penetration);

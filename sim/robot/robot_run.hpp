@@ -4,6 +4,7 @@
 // leg_placement.cpp (hip placement in flight).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -65,6 +66,18 @@ class RobotRun final : public run::HybridModel {
     return {0.0, y0};
   }
 
+  /// The run's system and inputs (an engine that steps on its own reads them before a step).
+  const RobotSystem& robot_system() const { return sys_; }
+  const pr::MechanismInputs& inputs() const { return data_.inputs; }
+  /// Another engine integrates (MuJoCo): its contact and dampers are not the pseudo-rigid
+  /// model's, so the model's energy balance along its trajectory measures the two models'
+  /// difference, not an integration error, and ends no run (energy_drift still reports it).
+  void external_engine() {
+    blowup_ = std::numeric_limits<double>::infinity();
+    run_.blowup = blowup_;
+    result.monitors.energy_measured = false;
+  }
+
   const ode::OdeSystem& system() const override { return sys_; }
   const ode::SolverOptions& integration_options() const override { return prs_.solver; }
   void start(const ode::Stepper& stepper, const ode::Vec& y) override {
@@ -105,7 +118,9 @@ class RobotRun final : public run::HybridModel {
     result.run.reason = std::move(reason);
   }
   std::string step_note(const ode::Stepper& st) const {
-    return divergence_note(solver_.method, st.h(), verlet_limit_);
+    const std::string engine = st.failure_note();
+    return engine.empty() ? divergence_note(solver_.method, st.h(), verlet_limit_)
+                          : " (" + engine + ")";
   }
   Vector3d total_momentum(const ode::Vec& ys) const {
     Vector3d p = Vector3d::Zero();

@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 
+#include "sim/mujoco/mujoco_simulator.hpp"
 #include "sim/reduced/run_limits.hpp"
 #include "sim/robot/robot_run.hpp"
 
@@ -62,6 +64,16 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
 RobotRunResult simulate(const scene::Scene& scene_in, const RobotRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   reduced::require_memory_limits(scene_in.simulation, options.record_trajectory, true);
+  if (scene_in.model == scene::ModelKind::kMujoco) {
+#ifdef PRONK_HAVE_MUJOCO
+    RobotRunResult result = mujoco::simulate(scene_in, options);
+    result.run.cost.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return result;
+#else
+    throw std::invalid_argument(mujoco::kNotBuilt);
+#endif
+  }
   RobotModel model = build_robot(scene_in);
   pr::MethodChoice choice;
   const bool automatic = scene_in.pseudo_rigid.solver_auto;

@@ -52,6 +52,9 @@ struct RobotMonitors {
   long zero_length_triggers = 0;
   pseudorigid::StiffnessChoice stiffness;                    ///< what "auto" chose
   double internal_stiffness = 0.0, contact_stiffness = 0.0;  ///< used [N/m]
+  /// false for MuJoCo runs: its contact and joint dampers dissipate by its own laws, so the
+  /// pseudo-rigid energy balance is not an accuracy monitor there (energy_drift is 0).
+  bool energy_measured = true;
   bool method_auto = false;                                  ///< the scene's solver was "auto"
   pseudorigid::MethodChoice method_choice;                   ///< what it chose (when method_auto)
 
@@ -67,13 +70,17 @@ struct RobotRunResult {
   /// Per stride: largest horizontal foot travel during the stance [m].
   std::vector<double> stride_slip;
   RobotMonitors monitors;
+  /// "model": "mujoco": the robot's MJCF model, its keyframe "initial" the run's start (the
+  /// outputs write it as robot.xml); empty for the other models.
+  std::string mjcf;
 };
 
 struct RobotRunOptions {
   bool record_trajectory = true;
 };
 
-/// Simulates scene s with the pseudo-rigid robot, whatever s.model says.
+/// Simulates scene s with the full model's robot: in MuJoCo when s.model is kMujoco (throws
+/// std::invalid_argument when this build has no MuJoCo), else in the pseudo-rigid model.
 /// Throws std::invalid_argument for a robot that cannot be built (reason given) or a run
 /// that would hold more records than reduced/run_limits.hpp allows (the numbers given);
 /// numerical trouble ends the run with a status and reason, never NaN; a fixed step too

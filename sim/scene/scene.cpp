@@ -10,8 +10,18 @@ std::string_view to_string(ModelKind k) {
       return "pulse";
     case ModelKind::kPseudoRigid:
       return "pseudo_rigid";
+    case ModelKind::kMujoco:
+      return "mujoco";
   }
   return "?";
+}
+
+bool mujoco_available() {
+#ifdef PRONK_HAVE_MUJOCO
+  return true;
+#else
+  return false;
+#endif
 }
 
 void seed_gains(const Body& body, Vec6* kp, Vec6* kd) {

@@ -19,9 +19,19 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
-/// Which model simulates the scene.
-enum class ModelKind { kImpulse, kPulse, kPseudoRigid };
+/// Which model simulates the scene. kMujoco: the full model's robot and controller with MuJoCo
+/// as the engine (sim/mujoco/; optional at build time, mujoco_available()).
+enum class ModelKind { kImpulse, kPulse, kPseudoRigid, kMujoco };
 std::string_view to_string(ModelKind k);
+
+/// The full model's robot and controller (legs, feet, hip placement, the `pseudo_rigid`
+/// settings): pseudo_rigid and mujoco. The reduced models are the others.
+inline bool is_full_model(ModelKind k) {
+  return k == ModelKind::kPseudoRigid || k == ModelKind::kMujoco;
+}
+
+/// True when this build has MuJoCo (libmujoco-dev found by CMake): "model": "mujoco" runs.
+bool mujoco_available();
 
 /// Attitude integration: exact quaternion kinematics, or the seed's small-angle
 /// formulation (1-2-3 Euler angles integrated as if they were body-rate integrals).
@@ -251,6 +261,15 @@ struct PseudoRigid {
   }
 };
 
+/// Settings only "model": "mujoco" uses (sim/mujoco/robot_mjcf.hpp): MuJoCo's own integrator
+/// and step. The contact's stiffness, damping and friction, the legs and the controller are the
+/// `pseudo_rigid` settings.
+struct Mujoco {
+  enum class Integrator { kEuler, kRk4 };
+  double timestep = 1e-3;  ///< [s]
+  Integrator integrator = Integrator::kEuler;
+};
+
 /// Initial state.
 struct Initial {
   Vec3 position = Vec3(0, 0, 0.3);  ///< CoM [m]
@@ -300,6 +319,7 @@ struct Scene {
   Controller controller;
   Pulse pulse;
   PseudoRigid pseudo_rigid;
+  Mujoco mujoco;
   Initial initial;
   std::vector<Disturbance> disturbances;  ///< sorted by time
   Simulation simulation;
