@@ -87,8 +87,12 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args) {
   cmd->add_option("designs", args.designs, "design.json files (at least two)")->required();
   cmd->add_option("--out", args.out_dir, "Output directory (default: out/compare)");
   cmd->add_option("--model", args.model,
-                  "Run every design in this model (impulse, pulse, pseudo_rigid; default: each "
+                  "Run every design in this model (impulse, pulse, pseudo_rigid, mujoco; default: each "
                   "in its own study's)");
+  cmd->add_option("--set", args.overrides,
+                  "Override every design's scene: --set /json/pointer=value (repeatable), after "
+                  "its study's own scene_overrides")
+      ->type_name("/PTR=VALUE");
   cmd->add_option("--reference", args.reference,
                   "Whose study's trials, objective and constraints every design runs: the "
                   "design's position among the files (default 1)")
@@ -113,6 +117,7 @@ int run_compare(const CompareArgs& args) {
   optimize::CompareOptions opt;
   opt.threads = thread_count(args.threads);
   opt.model = args.model;
+  opt.scene_overrides = args.overrides;
   opt.reference = args.reference;
   opt.trials = args.trials;
   if (args.seed >= 0) opt.seed = static_cast<std::uint64_t>(args.seed);

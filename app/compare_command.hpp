@@ -15,6 +15,7 @@ struct CompareArgs {
   std::vector<std::string> designs;
   std::string out_dir;
   std::string model;
+  std::vector<std::string> overrides;  ///< --set, every design's scene
   int reference = 1;
   long trials = 0;
   long long seed = -1;  ///< -1: the reference study's own

@@ -72,10 +72,12 @@ Study judged_study(const ComparedDesign& d, const json& judging, const CompareOp
     }
   }
   if (!opt.model.empty()) doc["model"] = opt.model;
+  for (const std::string& o : opt.scene_overrides) doc["scene_overrides"].push_back(o);
   std::string name = d.file + "#/study_document";
   if (doc != own_doc) {
     name += " (run on the trials of " + ref_file;
     if (!opt.model.empty()) name += ", in the " + opt.model + " model";
+    for (const std::string& o : opt.scene_overrides) name += ", --set " + o;
     name += ")";
   }
   const std::string dir = std::filesystem::path(d.file).parent_path().string();
@@ -175,8 +177,10 @@ void CompareOptions::validate(size_t designs) const {
     throw io::InputError("command line", "", "at least two design.json files to compare",
                          std::to_string(designs));
   }
-  if (!model.empty() && model != "impulse" && model != "pulse" && model != "pseudo_rigid") {
-    throw io::InputError("--model", "", "impulse, pulse or pseudo_rigid", "\"" + model + "\"");
+  if (!model.empty() && model != "impulse" && model != "pulse" && model != "pseudo_rigid" &&
+      model != "mujoco") {
+    throw io::InputError("--model", "", "impulse, pulse, pseudo_rigid or mujoco",
+                         "\"" + model + "\"");
   }
   if (reference < 1 || static_cast<size_t>(reference) > designs) {
     throw io::InputError("--reference", "",

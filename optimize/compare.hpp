@@ -35,6 +35,9 @@ struct CompareOptions {
   /// The trial every design plays back: "nominal" (the scene undisturbed, the nominal robot,
   /// as long as a validation trial), "scenarios:I" or "validation:I" (trial I of that set).
   std::string play = "nominal";
+  /// Scene overrides ("/pointer=value") every design's scene takes after its study's own
+  /// scene_overrides (e.g. MuJoCo's step: /mujoco={"timestep": 2.5e-4}).
+  std::vector<std::string> scene_overrides;
   ProgressStyle progress = ProgressStyle::kOff;
   /// Throws io::InputError naming the option (or "command line" for fewer than two designs)
   /// for `designs` design files.

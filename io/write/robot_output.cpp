@@ -87,7 +87,8 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
                    {"integrator", scene.mujoco.integrator == scene::Mujoco::Integrator::kRk4
                                       ? "RK4"
                                       : "Euler"},
-                   {"timestep", scene.mujoco.timestep}};
+                   {"timestep", scene.mujoco.timestep},
+                   {"mj_step_cpu_s", r.engine_cpu}};
   }
   const bool mujoco = scene.model == scene::ModelKind::kMujoco;
   j["pseudo_rigid"] = {{"energy_scale_J", m.energy_scale},

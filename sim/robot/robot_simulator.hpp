@@ -73,6 +73,9 @@ struct RobotRunResult {
   /// "model": "mujoco": the robot's MJCF model, its keyframe "initial" the run's start (the
   /// outputs write it as robot.xml); empty for the other models.
   std::string mjcf;
+  /// "model": "mujoco": CPU time of MuJoCo's mj_step alone (the run's cost.wall_time adds the
+  /// controller, events and records) [s]; 0 otherwise.
+  double engine_cpu = 0.0;
 };
 
 struct RobotRunOptions {

@@ -178,7 +178,7 @@ TEST_CASE("compare: bad input is one line, exit 2", "[cli][compare][input]") {
                       ", in the impulse model): /parameters/0/pointer: expected a setting the "
                       "impulse model uses");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--model", "full"}),
-                  "--model: /: expected impulse, pulse or pseudo_rigid, found \"full\"");
+                  "--model: /: expected impulse, pulse, pseudo_rigid or mujoco, found \"full\"");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--play", "scenarios:16"}),
                   "--play: /: expected a trial of the scenarios (0 to 15), found \"scenarios:16\"");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--threads", "0"}), "command line: ");

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "sim/scene/scene.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 using nlohmann::json;
@@ -71,8 +72,13 @@ TEST_CASE("map rejects bad input with exit 2 naming file and pointer", "[cli][ma
   CHECK(run(pronk_exe() + " map " + d.path + "/model.json --out " + d.path + "/o", d.path, &err) ==
         2);
   CHECK(err.rfind("pronk: error: " + d.path +
-                      "/model.json: /models/1: expected \"impulse\", \"pulse\" or "
-                      "\"pseudo_rigid\", found string \"pseudo-rigid\"",
+                      "/model.json: /models/1: expected \"impulse\", \"pulse\"" +
+                      (pronk::scene::mujoco_available()
+                           ? std::string(", \"pseudo_rigid\" or \"mujoco\"")
+                           : std::string(" or \"pseudo_rigid\" (this pronk was built without "
+                                         "MuJoCo: install libmujoco-dev and rebuild for "
+                                         "\"mujoco\")")) +
+                      ", found string \"pseudo-rigid\"",
                   0) == 0);
   CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
   { std::ofstream(d.path + "/good.json") << pronk::test::tiny_map_document().dump(); }

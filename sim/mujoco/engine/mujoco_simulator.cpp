@@ -44,6 +44,7 @@ robot::RobotRunResult simulate(const scene::Scene& scene_in, const robot::RobotR
   run->finish(end.t, end.y, stepper);
   robot::RobotRunResult result = std::move(run->result);
   result.mjcf = mjcf;
+  result.engine_cpu = stepper.engine_cpu();
   return result;
 }
 

@@ -2,6 +2,8 @@
 
 #include <mujoco/mujoco.h>
 
+#include <time.h>
+
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -58,6 +60,13 @@ const char* warning_name(int w) {
     default:
       return "mjWARN_?";
   }
+}
+
+/// CPU time of the calling thread [s].
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 int id_of(const mjModel* m, mjtObj type, const std::string& name) {
@@ -284,7 +293,9 @@ bool MujocoStepper::advance(double h) {
   mjModel* m = impl_->m;
   mjData* d = impl_->d;
   m->opt.timestep = h;
+  const double c0 = thread_cpu();
   mj_step(m, d);
+  engine_cpu_ += thread_cpu() - c0;
   ++counters_.rhs_evaluations;
   for (int w = 0; w < mjNWARNING; ++w) {
     if (w == mjWARN_VGEOMFULL) continue;  // the viewer's, not the physics'

@@ -52,6 +52,8 @@ class MujocoStepper final : public ode::Stepper {
   bool retake(const ode::OdeSystem& sys, double t) override;
   std::string failure_note() const override;
 
+  /// CPU time spent in mj_step so far, this thread [s] (the engine alone, beside the run's).
+  double engine_cpu() const { return engine_cpu_; }
   /// MuJoCo's qpos and qvel now (the keyframe of an exported model).
   std::vector<double> qpos() const;
   std::vector<double> qvel() const;
@@ -78,6 +80,7 @@ class MujocoStepper final : public ode::Stepper {
   bool started_ = false;
   ode::SolverCounters counters_;
   std::string warning_;  ///< the MuJoCo warning that failed a step (empty: none)
+  double engine_cpu_ = 0.0;
   std::vector<double> target_roll_, target_pitch_;
 };
 
