@@ -86,9 +86,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args) {
       "every design's playback of the same trial (runs/<design>/view.html).");
   cmd->add_option("designs", args.designs, "design.json files (at least two)")->required();
   cmd->add_option("--out", args.out_dir, "Output directory (default: out/compare)");
-  cmd->add_option("--model", args.model,
-                  "Run every design in this model (impulse, pulse, pseudo_rigid, mujoco; default: each "
-                  "in its own study's)");
+  cmd->add_option(
+      "--model", args.model,
+      "Run every design in this model (impulse, pulse, pseudo_rigid, mujoco; default: each "
+      "in its own study's)");
   cmd->add_option("--set", args.overrides,
                   "Override every design's scene: --set /json/pointer=value (repeatable), after "
                   "its study's own scene_overrides")

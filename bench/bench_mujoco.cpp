@@ -94,11 +94,12 @@ int main(int argc, char** argv) {
       s.engine.push_back(s.last.engine_cpu);
     }
   }
-  std::printf("  \"repeats\": %d,\n  \"reference\": {\"setting\": \"pronk rigid body, verlet "
-              "h = 4e-5 s\", \"status\": \"%s\", \"strides\": %zu, \"cpu_s\": %.4g},\n"
-              "  \"results\": [\n",
-              repeats, std::string(reduced::to_string(ref.run.status)).c_str(),
-              ref.run.strides.size(), cpu_ref);
+  std::printf(
+      "  \"repeats\": %d,\n  \"reference\": {\"setting\": \"pronk rigid body, verlet "
+      "h = 4e-5 s\", \"status\": \"%s\", \"strides\": %zu, \"cpu_s\": %.4g},\n"
+      "  \"results\": [\n",
+      repeats, std::string(reduced::to_string(ref.run.status)).c_str(), ref.run.strides.size(),
+      cpu_ref);
   for (size_t i = 0; i < all.size(); ++i) {
     const Setting& s = all[i];
     const robot::FidelityDiscrepancy d = robot::compare_strides(s.last.run, ref.run, 10);

@@ -24,8 +24,8 @@ namespace {
 
 // Keys a stage may set for itself; every other study key is shared by all stages.
 const std::vector<std::string>& stage_study_keys() {
-  static const std::vector<std::string> keys = {"optimizer",   "scenarios", "validation",
-                                                "stability",   "objective", "objectives",
+  static const std::vector<std::string> keys = {"optimizer",   "scenarios",   "validation",
+                                                "stability",   "objective",   "objectives",
                                                 "constraints", "fall_penalty"};
   return keys;
 }
@@ -116,7 +116,7 @@ StageSpec parse_stage(io::JsonReader s, const StagedStudy& st, const json& raw,
   for (const auto& e : earlier)
     if (e.name == stage.name) throw s.error("name", "a name no earlier stage has", stage.name);
   if (!s.has("model"))
-    throw s.error("model", "the stage's model (impulse, pulse, pseudo_rigid)", "nothing");
+    throw s.error("model", "the stage's model (impulse, pulse, pseudo_rigid, mujoco)", "nothing");
   stage.model = s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
   stage.start = s.string_or("start", "previous");
   bool start_ok = stage.start == "previous" || stage.start == "initial";
@@ -440,10 +440,9 @@ std::string stages_after(const StagedStudy& st, size_t k,
   std::string out;
   for (size_t j = k + 1; j < st.stages.size(); ++j) {
     const Study s = stage_study(st, j, initial);
-    const long budget = s.moo ? s.moo->population * (s.moo->generations + 1)
-                              : s.optimizer.max_evaluations;
-    out += (out.empty() ? "; then " : ", ") + st.stages[j].name + " (" +
-           std::to_string(budget) +
+    const long budget =
+        s.moo ? s.moo->population * (s.moo->generations + 1) : s.optimizer.max_evaluations;
+    out += (out.empty() ? "; then " : ", ") + st.stages[j].name + " (" + std::to_string(budget) +
            " evaluations, " + st.stages[j].model + " model)";
   }
   return out;

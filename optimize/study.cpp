@@ -369,8 +369,9 @@ void parse_moo_optimizer(io::JsonReader& o, const json& doc, const std::string& 
   for (const char* key : {"max_evaluations", "max_time"}) {
     if (o.has(key)) {
       throw o.error(key,
-                    "no \"" + std::string(key) + "\" with a multi-objective algorithm (it runs "
-                    "options/population x (options/generations + 1) evaluations)",
+                    "no \"" + std::string(key) +
+                        "\" with a multi-objective algorithm (it runs "
+                        "options/population x (options/generations + 1) evaluations)",
                     io::describe(doc.at("optimizer").at(key)));
     }
   }
@@ -508,8 +509,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   }
   parse_study_objective(r, file, scene0.model, &ec);
   ec.stability = r.boolean_or("stability", true);
-  if (ec.stability && scene::is_full_model(scene0.model) &&
-      !scene0.pseudo_rigid.actuators) {
+  if (ec.stability && scene::is_full_model(scene0.model) && !scene0.pseudo_rigid.actuators) {
     throw r.error("stability",
                   "false for passive legs: the full model's stride-map fit needs a controlled gait",
                   "true, with /pseudo_rigid/actuators false");

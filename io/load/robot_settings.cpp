@@ -290,9 +290,9 @@ namespace {
 /// settings do nothing; the legs, feet, contact, friction and controller settings are used.
 std::vector<std::string> mujoco_unused_settings(const scene::Scene& s) {
   std::vector<std::string> out = {"/attitude", "/simulation/solver"};
-  for (const char* k : {"body", "hips", "dummy_ratio", "internal_stiffness", "internal_damping",
-                        "strain_budget", "penetration_budget", "slip_velocity",
-                        "energy_blowup_factor", "error_norm", "solver"}) {
+  for (const char* k :
+       {"body", "hips", "dummy_ratio", "internal_stiffness", "internal_damping", "strain_budget",
+        "penetration_budget", "slip_velocity", "energy_blowup_factor", "error_norm", "solver"}) {
     out.push_back(std::string("/pseudo_rigid/") + k);
   }
   out.push_back("/pulse/gravity_compensation");

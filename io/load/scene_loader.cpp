@@ -363,8 +363,7 @@ void check_mujoco_scene(const scene::Scene& s, const std::string& file) {
   }
   if (s.pseudo_rigid.legs != scene::PseudoRigid::Legs::kSpring) {
     throw InputError(file, "/pseudo_rigid/legs",
-                     "\"spring\" (MuJoCo's legs are spring-damper slides with feet)",
-                     "\"force\"");
+                     "\"spring\" (MuJoCo's legs are spring-damper slides with feet)", "\"force\"");
   }
   if (!(s.pseudo_rigid.foot_mass > 0.0)) {
     throw InputError(file, "/pseudo_rigid/foot_mass", "a foot mass > 0 kg for MuJoCo's feet",
@@ -372,10 +371,10 @@ void check_mujoco_scene(const scene::Scene& s, const std::string& file) {
   }
   const double flight = std::sqrt(2.0 * s.controller.hop_height / std::max(s.gravity, 1e-9));
   if (s.mujoco.timestep > 0.1 * flight) {
-    throw InputError(file, "/mujoco/timestep",
-                     "a step below a tenth of the hop's fall time (" +
-                         number_text(0.1 * flight) + " s)",
-                     number_text(s.mujoco.timestep));
+    throw InputError(
+        file, "/mujoco/timestep",
+        "a step below a tenth of the hop's fall time (" + number_text(0.1 * flight) + " s)",
+        number_text(s.mujoco.timestep));
   }
 }
 
@@ -383,8 +382,8 @@ void check_mujoco_scene(const scene::Scene& s, const std::string& file) {
 void parse_scene_mujoco(JsonReader r, scene::Mujoco* m) {
   m->timestep = r.number_or("timestep", m->timestep, 1e-6, 0.1);
   const std::string integrator = r.choice_or("integrator", "euler", {"euler", "rk4"});
-  m->integrator = integrator == "rk4" ? scene::Mujoco::Integrator::kRk4
-                                      : scene::Mujoco::Integrator::kEuler;
+  m->integrator =
+      integrator == "rk4" ? scene::Mujoco::Integrator::kRk4 : scene::Mujoco::Integrator::kEuler;
   r.finish();
 }
 
@@ -417,10 +416,11 @@ void parse_scene_header(JsonReader& r, scene::Scene* s) {
              : model == "mujoco"       ? scene::ModelKind::kMujoco
                                        : scene::ModelKind::kImpulse;
   if (s->model == scene::ModelKind::kMujoco && !scene::mujoco_available()) {
-    throw InputError(r.file(), "/model",
-                     "impulse, pulse or pseudo_rigid (this pronk was built without MuJoCo: "
-                     "install Debian's libmujoco-dev, e.g. with bash scripts/setup.sh, and rebuild)",
-                     "\"mujoco\"");
+    throw InputError(
+        r.file(), "/model",
+        "impulse, pulse or pseudo_rigid (this pronk was built without MuJoCo: "
+        "install Debian's libmujoco-dev, e.g. with bash scripts/setup.sh, and rebuild)",
+        "\"mujoco\"");
   }
   s->gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
   const std::string att =
@@ -569,9 +569,9 @@ json scene_to_json(const scene::Scene& s) {
                 {"gravity_compensation", s.pulse.gravity_compensation}};
   j["pseudo_rigid"] = pseudo_rigid_to_json(s.pseudo_rigid);
   if (s.model == scene::ModelKind::kMujoco) {
-    j["mujoco"] = {{"timestep", s.mujoco.timestep},
-                   {"integrator",
-                    s.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "rk4" : "euler"}};
+    j["mujoco"] = {
+        {"timestep", s.mujoco.timestep},
+        {"integrator", s.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "rk4" : "euler"}};
   }
   const auto& q = s.initial.attitude;
   j["initial"] = {{"position", vec(s.initial.position)},

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
+#include "io/load/robot_settings.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/method_choice_output.hpp"
 #include "io/write/plot.hpp"
-#include "io/load/robot_settings.hpp"
 
 namespace pronk::io {
 
@@ -84,9 +84,8 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   for (double s : r.stride_slip) max_slip_stance = std::max(max_slip_stance, s);
   if (scene.model == scene::ModelKind::kMujoco) {
     j["solver"] = {{"engine", "mujoco"},
-                   {"integrator", scene.mujoco.integrator == scene::Mujoco::Integrator::kRk4
-                                      ? "RK4"
-                                      : "Euler"},
+                   {"integrator",
+                    scene.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler"},
                    {"timestep", scene.mujoco.timestep},
                    {"mj_step_cpu_s", r.engine_cpu}};
   }

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "io/load/scene_loader.hpp"
 #include "optimize/map/map_engine.hpp"
 #include "optimize/scenario.hpp"
-#include "io/load/scene_loader.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::optimize::map {
@@ -67,9 +67,9 @@ nlohmann::json map_playback_json(const MapStudy& st) {
   const std::string model(scene::to_string(st.primary_model()));
   if (scene::is_full_model(st.primary_model())) {
     return {{"model", model},
-            {"skipped",
-             "no playback for a " + model + " map: re-simulating one full-model trial per cell "
-             "would cost a fraction 1/trials of the whole map again"}};
+            {"skipped", "no playback for a " + model +
+                            " map: re-simulating one full-model trial per cell "
+                            "would cost a fraction 1/trials of the whole map again"}};
   }
   const long cells = st.cells();
   const long max_rows = std::max(20L, kPlaybackNumbers / (12 * std::max(1L, cells)));

@@ -249,8 +249,7 @@ DutySetting duty_setting(const scene::Scene& s) {
     return std::find(unused.begin(), unused.end(), p) != unused.end();
   };
   if (!is_unused("/pulse/duration")) return DutySetting::kPulseDuration;
-  if (scene::is_full_model(s.model) &&
-      s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring &&
+  if (scene::is_full_model(s.model) && s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring &&
       !is_unused("/pseudo_rigid/leg_stiffness"))
     return DutySetting::kLegStiffness;
   return DutySetting::kNone;
@@ -471,8 +470,8 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
   st.base_scene = io::parse_scene(scene_doc, st.scene_file);
   st.scene_doc = io::scene_to_json(st.base_scene);
   st.models = map_study_models(r, doc, file);
-  const bool full_model =
-      std::any_of(st.models.begin(), st.models.end(), [](auto m) { return scene::is_full_model(m); });
+  const bool full_model = std::any_of(st.models.begin(), st.models.end(),
+                                      [](auto m) { return scene::is_full_model(m); });
   if (full_model)
     check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
   parse_map_study_axes(r, doc, file, &st);

@@ -14,7 +14,7 @@ namespace pronk::mujoco {
 
 /// One leg's joint coordinates and rates.
 struct LegJoints {
-  double roll = 0.0, pitch = 0.0, slide = 0.0;           ///< [rad, rad, m]
+  double roll = 0.0, pitch = 0.0, slide = 0.0;                 ///< [rad, rad, m]
   double roll_rate = 0.0, pitch_rate = 0.0, slide_rate = 0.0;  ///< [rad/s, rad/s, m/s]
 };
 

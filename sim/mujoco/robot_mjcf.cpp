@@ -45,9 +45,8 @@ void write_leg(std::ostringstream& o, const scene::Scene& s, const robot::RobotM
     << "        <joint name=\"" << roll_joint_name(i) << "\" type=\"hinge\" axis=\"1 0 0\"/>\n"
     << "        <joint name=\"" << pitch_joint_name(i) << "\" type=\"hinge\" axis=\"0 1 0\"/>\n"
     << "        <joint name=\"" << slide_joint_name(i)
-    << "\" type=\"slide\" axis=\"0 0 -1\" stiffness=\"" << num(spring.stiffness)
-    << "\" damping=\"" << num(spring.damping) << "\" springref=\""
-    << num(model.rest_length[i] - L) << "\"/>\n"
+    << "\" type=\"slide\" axis=\"0 0 -1\" stiffness=\"" << num(spring.stiffness) << "\" damping=\""
+    << num(spring.damping) << "\" springref=\"" << num(model.rest_length[i] - L) << "\"/>\n"
     << "        <inertial pos=\"0 0 " << num(-L) << "\" mass=\"" << num(m_foot)
     << "\" diaginertia=\"" << nums({I_foot, I_foot, I_foot}) << "\"/>\n"
     << "        <geom name=\"" << indexed("foot", i, "") << "\" type=\"sphere\" size=\""
@@ -115,9 +114,8 @@ std::string robot_mjcf(const scene::Scene& s, const robot::RobotModel& model,
     << "\" contype=\"0\" conaffinity=\"1\" condim=\"" << (mu > 0.0 ? 3 : 1) << "\" friction=\""
     << nums({mu, 0.0, 0.0}) << "\" solref=\"" << nums({-c.stiffness, -c.damping})
     << "\" solimp=\"0.99 0.99 0.001\" rgba=\"0.8 0.85 0.8 1\"/>\n"
-    << "    <body name=\"body\" pos=\"" << nums({s.initial.position.x(), s.initial.position.y(),
-                                                s.initial.position.z()})
-    << "\">\n"
+    << "    <body name=\"body\" pos=\""
+    << nums({s.initial.position.x(), s.initial.position.y(), s.initial.position.z()}) << "\">\n"
     << "      <freejoint name=\"root\"/>\n"
     << "      <inertial pos=\"0 0 0\" mass=\"" << num(m_body) << "\" fullinertia=\""
     << nums({I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)}) << "\"/>\n";

@@ -55,8 +55,8 @@ struct RobotMonitors {
   /// false for MuJoCo runs: its contact and joint dampers dissipate by its own laws, so the
   /// pseudo-rigid energy balance is not an accuracy monitor there (energy_drift is 0).
   bool energy_measured = true;
-  bool method_auto = false;                                  ///< the scene's solver was "auto"
-  pseudorigid::MethodChoice method_choice;                   ///< what it chose (when method_auto)
+  bool method_auto = false;                 ///< the scene's solver was "auto"
+  pseudorigid::MethodChoice method_choice;  ///< what it chose (when method_auto)
 
   /// energy_drift relative to energy_scale (0 when the scale is 0).
   double drift_relative() const { return energy_scale > 0.0 ? energy_drift / energy_scale : 0.0; }

@@ -44,8 +44,7 @@ io::InputError error_of(const std::string& name, const std::vector<std::string>&
 
 }  // namespace
 
-TEST_CASE("leg joints: the foot's rate is the joints' rates through the kinematics",
-          "[mujoco]") {
+TEST_CASE("leg joints: the foot's rate is the joints' rates through the kinematics", "[mujoco]") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double length = 0.25, h = 1e-6;
@@ -116,7 +115,8 @@ TEST_CASE("mujoco: the MJCF robot has the scene's mass, inertia and legs", "[muj
   // MuJoCo diagonalises the inertia (its principal axes in body_iquat, moments in its own
   // order): the same principal moments as the scene's tensor.
   std::vector<double> mj(m->body_inertia + 3 * body, m->body_inertia + 3 * body + 3);
-  const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(s.body.inertia).eigenvalues();
+  const Eigen::Vector3d ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(s.body.inertia).eigenvalues();
   std::vector<double> scene_moments(ev.data(), ev.data() + 3);
   std::sort(mj.begin(), mj.end());
   std::sort(scene_moments.begin(), scene_moments.end());
@@ -161,8 +161,8 @@ TEST_CASE("mujoco: refining MuJoCo's step moves pr_running's strides towards the
 TEST_CASE("mujoco: a leg spring MuJoCo cannot step ends diverged with MuJoCo's warning",
           "[mujoco][extremes]") {
   // A 1e9 N/m leg spring on a 1 g foot (omega 1e6 rad/s) at MuJoCo's 1 ms explicit spring.
-  scene::Scene s = load("pr_running.json",
-                        {"/model=\"mujoco\"", "/pseudo_rigid/leg_stiffness=1e9"});
+  scene::Scene s =
+      load("pr_running.json", {"/model=\"mujoco\"", "/pseudo_rigid/leg_stiffness=1e9"});
   s.simulation.duration = 1.0;
   s.mujoco.timestep = 1e-3;
   const RunResult r = simulate(s);

@@ -30,7 +30,8 @@ scene::Scene engine_scene(const scene::Scene& s) {
 
 }  // namespace
 
-robot::RobotRunResult simulate(const scene::Scene& scene_in, const robot::RobotRunOptions& options) {
+robot::RobotRunResult simulate(const scene::Scene& scene_in,
+                               const robot::RobotRunOptions& options) {
   const scene::Scene s = engine_scene(scene_in);
   const robot::RobotModel model = robot::build_robot(s);
   auto run = std::make_unique<robot::detail::RobotRun>(s, model, options);

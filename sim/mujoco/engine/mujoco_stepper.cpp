@@ -34,7 +34,9 @@ std::mutex& compile_mutex() {
 void install_handlers() {
   static std::once_flag once;
   std::call_once(once, [] {
-    mju_user_error = [](const char* msg) { throw std::runtime_error(std::string("MuJoCo: ") + msg); };
+    mju_user_error = [](const char* msg) {
+      throw std::runtime_error(std::string("MuJoCo: ") + msg);
+    };
     mju_user_warning = [](const char*) {};
   });
 }
@@ -97,8 +99,8 @@ struct MujocoStepper::Impl {
 };
 
 MujocoStepper::MujocoStepper(const scene::Scene& s, const robot::RobotModel& model,
-                             const robot::RobotSystem& system,
-                             const pr::MechanismInputs& inputs, const std::string& mjcf)
+                             const robot::RobotSystem& system, const pr::MechanismInputs& inputs,
+                             const std::string& mjcf)
     : impl_(std::make_unique<Impl>()),
       scene_(s),
       model_(model),
@@ -177,8 +179,7 @@ void MujocoStepper::map_in(const ode::Vec& y) {
     const double m_f = mech.masses[static_cast<size_t>(f)].mass;
     const Vector3d arm = R.transpose() * (y.segment<3>(6 * f) - c);
     const Vector3d r = arm - model_.hip[i];
-    const Vector3d r_rate =
-        R.transpose() * (y.segment<3>(6 * f + 3) / m_f - v) - w_b.cross(arm);
+    const Vector3d r_rate = R.transpose() * (y.segment<3>(6 * f + 3) / m_f - v) - w_b.cross(arm);
     const LegJoints j = leg_joints(r, r_rate, scene_.legs.length);
     d->qpos[L.roll_q] = j.roll;
     d->qpos[L.pitch_q] = j.pitch;
@@ -356,9 +357,10 @@ void MujocoStepper::dense(double t, ode::Vec& y_out) const {
 }
 
 std::string MujocoStepper::failure_note() const {
-  std::string note = std::string("MuJoCo ") +
-                     (scene_.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler") +
-                     ", step " + run::fmt(timestep_) + " s";
+  std::string note =
+      std::string("MuJoCo ") +
+      (scene_.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler") + ", step " +
+      run::fmt(timestep_) + " s";
   if (!warning_.empty()) note += "; " + warning_;
   return note;
 }

@@ -4,11 +4,11 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/scene/scene.hpp"
 #include <cmath>
+#include "sim/scene/scene.hpp"
 
-#include "optimize/map/map_engine.hpp"
 #include "io/load/input_error.hpp"
+#include "optimize/map/map_engine.hpp"
 #include "tests/optimize/map/map_test_support.hpp"
 
 using nlohmann::json;
@@ -129,7 +129,8 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
   d["models"] = {"pulse", "rigid"};
   CHECK(error_of(d).find(std::string("s.json: /models/1: \"impulse\", \"pulse\"") +
                          (pronk::scene::mujoco_available() ? ", \"pseudo_rigid\" or \"mujoco\" | "
-                                                    : " or \"pseudo_rigid\" (this pronk") ) == 0);
+                                                           : " or \"pseudo_rigid\" (this pronk")) ==
+        0);
   d["models"] = {"pseudo_rigid", "pseudo_rigid"};
   CHECK(error_of(d).find("s.json: /models: two different models") == 0);
   d = doc;
