@@ -177,6 +177,10 @@ TEST_CASE("compare: bad input is one line, exit 2", "[cli][compare][input]") {
                   a + "#/study_document (run on the trials of " + a +
                       ", in the impulse model): /parameters/0/pointer: expected a setting the "
                       "impulse model uses");
+  // --set reaches every design's scene, through the scene's own checks.
+  check_bad_input(cli_support::pronk(d, {"compare", a, a, "--set", "/body/mas=2"}),
+                  a + "#/study_document (run on the trials of " + a +
+                      ", --set /body/mas=2)#/scene: /body/mas: expected a known key");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--model", "full"}),
                   "--model: /: expected impulse, pulse, pseudo_rigid or mujoco, found \"full\"");
   check_bad_input(cli_support::pronk(d, {"compare", a, a, "--play", "scenarios:16"}),
