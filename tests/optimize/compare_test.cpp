@@ -152,7 +152,7 @@ TEST_CASE("compare: options and models a design cannot take are input errors", "
         "command line: /: expected at least two design.json files to compare, found 1");
   o.model = "rigid";
   CHECK(error_of({f, g}, o) ==
-        "--model: /: expected impulse, pulse or pseudo_rigid, found \"rigid\"");
+        "--model: /: expected impulse, pulse, pseudo_rigid or mujoco, found \"rigid\"");
   o = {};
   o.reference = 3;
   CHECK(error_of({f, g}, o) ==
