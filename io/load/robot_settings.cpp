@@ -285,6 +285,18 @@ void add_defaulted_settings(json* resolved_scene) {
 }
 
 namespace {
+/// Spring legs (either full-model engine): the pulse settings their controller does not read.
+void add_spring_leg_unused(const scene::Scene& s, std::vector<std::string>* out) {
+  out->push_back("/pulse/gravity_compensation");
+  // The energy thrust sizes and times the force itself: the planned impulses count, not the
+  // pulse duration they were planned over (unless the hop law plans with it or a force limit
+  // stretches the pulses).
+  if (s.pseudo_rigid.thrust == Thrust::kEnergy && !s.controller.pulse_aware_hop &&
+      s.pseudo_rigid.actuator_max_force == 0.0) {
+    out->push_back("/pulse/duration");
+  }
+}
+
 /// "model": "mujoco": MuJoCo steps the robot with its rigid body, joint hips and its own contact
 /// solver, so the pseudo-rigid engine's body, hips, slides, friction regularisation and solver
 /// settings do nothing; the legs, feet, contact, friction and controller settings are used.
@@ -295,11 +307,7 @@ std::vector<std::string> mujoco_unused_settings(const scene::Scene& s) {
         "penetration_budget", "slip_velocity", "energy_blowup_factor", "error_norm", "solver"}) {
     out.push_back(std::string("/pseudo_rigid/") + k);
   }
-  out.push_back("/pulse/gravity_compensation");
-  if (s.pseudo_rigid.thrust == Thrust::kEnergy && !s.controller.pulse_aware_hop &&
-      s.pseudo_rigid.actuator_max_force == 0.0) {
-    out.push_back("/pulse/duration");
-  }
+  add_spring_leg_unused(s, &out);
   if (!s.pseudo_rigid.hip_rotation) out.push_back("/pseudo_rigid/level_feet");
   return out;
 }
@@ -325,16 +333,7 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       break;
     case scene::ModelKind::kPseudoRigid:
       out = {"/attitude", "/simulation/solver"};
-      if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring) {
-        out.push_back("/pulse/gravity_compensation");
-        // The energy thrust sizes and times the force itself: the planned impulses count,
-        // not the pulse duration they were planned over (unless the hop law plans with it or
-        // a force limit stretches the pulses).
-        if (s.pseudo_rigid.thrust == Thrust::kEnergy && !s.controller.pulse_aware_hop &&
-            s.pseudo_rigid.actuator_max_force == 0.0) {
-          out.push_back("/pulse/duration");
-        }
-      }
+      if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring) add_spring_leg_unused(s, &out);
       if (s.pseudo_rigid.hips == scene::PseudoRigid::Hips::kGhost) {
         out.push_back("/pseudo_rigid/dummy_ratio");
       }

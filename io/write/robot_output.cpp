@@ -6,6 +6,7 @@
 #include "io/write/atomic_file.hpp"
 #include "io/write/method_choice_output.hpp"
 #include "io/write/plot.hpp"
+#include "sim/mujoco/robot_mjcf.hpp"
 
 namespace pronk::io {
 
@@ -82,14 +83,13 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
   j["cost"]["lu_factorizations"] = r.run.cost.solver.lu_factorizations;
   double max_slip_stance = 0.0;
   for (double s : r.stride_slip) max_slip_stance = std::max(max_slip_stance, s);
-  if (scene.model == scene::ModelKind::kMujoco) {
+  const bool in_mujoco = scene.model == scene::ModelKind::kMujoco;
+  if (in_mujoco) {
     j["solver"] = {{"engine", "mujoco"},
-                   {"integrator",
-                    scene.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler"},
+                   {"integrator", mujoco::integrator_name(scene.mujoco.integrator)},
                    {"timestep", scene.mujoco.timestep},
                    {"mj_step_cpu_s", r.engine_cpu}};
   }
-  const bool mujoco = scene.model == scene::ModelKind::kMujoco;
   j["pseudo_rigid"] = {{"energy_scale_J", m.energy_scale},
                        {"energy_balance_drift_J", m.energy_drift},
                        {"energy_balance_drift_relative", m.drift_relative()},
@@ -103,7 +103,7 @@ json robot_summary_json(const scene::Scene& scene, const robot::RobotRunResult& 
                        {"internal_stiffness_N_per_m", m.internal_stiffness},
                        {"contact_stiffness_N_per_m", m.contact_stiffness},
                        {"stiffness_note", m.stiffness.note}};
-  if (mujoco) j["pseudo_rigid"]["energy_balance_monitored"] = false;
+  if (in_mujoco) j["pseudo_rigid"]["energy_balance_monitored"] = false;
   if (m.method_auto) {
     const pseudorigid::MethodChoice& c = m.method_choice;
     j["solver"] = solver_json(c.method, c.h_fixed, c.energy_tol, c.rtol, c.atol);

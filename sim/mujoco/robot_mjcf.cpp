@@ -59,6 +59,10 @@ void write_leg(std::ostringstream& o, const scene::Scene& s, const robot::RobotM
 
 }  // namespace
 
+const char* integrator_name(scene::Mujoco::Integrator integrator) {
+  return integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler";
+}
+
 std::string leg_body_name(size_t i) { return indexed("leg", i, ""); }
 std::string roll_joint_name(size_t i) { return indexed("leg", i, "_roll"); }
 std::string pitch_joint_name(size_t i) { return indexed("leg", i, "_pitch"); }
@@ -105,8 +109,7 @@ std::string robot_mjcf(const scene::Scene& s, const robot::RobotModel& model,
     << "<mujoco model=\"" << s.name << "\">\n"
     << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
     << "  <option timestep=\"" << num(dt) << "\" integrator=\""
-    << (s.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler")
-    << "\" gravity=\"0 0 " << num(-s.gravity) << "\"/>\n"
+    << integrator_name(s.mujoco.integrator) << "\" gravity=\"0 0 " << num(-s.gravity) << "\"/>\n"
     << "  <size nconmax=\"" << 2 * legs + 4 << "\" njmax=\"" << 8 * legs + 16 << "\"/>\n"
     << "  <worldbody>\n"
     << "    <light pos=\"0 0 3\" dir=\"0 0 -1\"/>\n"

@@ -26,6 +26,9 @@ namespace pronk::mujoco {
 /// sphere's centre (the pseudo-rigid robot's point foot) touches down at z = 0.
 constexpr double kFootRadius = 0.005;
 
+/// MuJoCo's name of the scene's integrator ("Euler", "RK4"), as MJCF and the outputs spell it.
+const char* integrator_name(scene::Mujoco::Integrator integrator);
+
 /// The contact's numbers as MJCF takes them.
 struct ContactParameters {
   double stiffness = 0.0;  ///< K, reference stiffness per unit mass [1/s^2]

@@ -18,6 +18,7 @@
 #include "sim/mujoco/robot_mjcf.hpp"
 #include "sim/robot/fidelity.hpp"
 #include "sim/simulate.hpp"
+#include "tests/support/scenes.hpp"
 
 #ifdef PRONK_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
@@ -28,13 +29,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-scene::Scene load(const std::string& name, const std::vector<std::string>& set = {}) {
-  return io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/" + name, set);
-}
-
 io::InputError error_of(const std::string& name, const std::vector<std::string>& set) {
   try {
-    (void)load(name, set);
+    (void)test::load_shipped(name, set);
   } catch (const io::InputError& e) {
     return e;
   }
@@ -77,23 +74,23 @@ TEST_CASE("leg joints: the foot's rate is the joints' rates through the kinemati
 TEST_CASE("mujoco: a scene of another fidelity or a step too long is refused with its pointer",
           "[mujoco]") {
   if (!scene::mujoco_available()) {
-    const io::InputError e = error_of("pr_running.json", {"/model=\"mujoco\""});
+    const io::InputError e = error_of("pr_running", {"/model=\"mujoco\""});
     CHECK(e.pointer() == "/model");
     CHECK_THAT(e.expected(), Catch::Matchers::Contains("built without MuJoCo"));
     return;
   }
-  CHECK(error_of("pr_running.json", {"/model=\"mujoco\"", "/mujoco/timestep=0.05"}).pointer() ==
+  CHECK(error_of("pr_running", {"/model=\"mujoco\"", "/mujoco/timestep=0.05"}).pointer() ==
         "/mujoco/timestep");
-  CHECK(error_of("pr_running.json", {"/model=\"mujoco\"", "/mujoco/step=0.001"}).pointer() ==
+  CHECK(error_of("pr_running", {"/model=\"mujoco\"", "/mujoco/step=0.001"}).pointer() ==
         "/mujoco/step");
-  CHECK(error_of("pr_running.json", {"/model=\"mujoco\"", "/pseudo_rigid/legs=\"force\""})
-            .pointer() == "/pseudo_rigid/legs");
+  CHECK(error_of("pr_running", {"/model=\"mujoco\"", "/pseudo_rigid/legs=\"force\""}).pointer() ==
+        "/pseudo_rigid/legs");
 }
 
 #ifdef PRONK_HAVE_MUJOCO
 
 TEST_CASE("mujoco: the MJCF robot has the scene's mass, inertia and legs", "[mujoco]") {
-  const scene::Scene s = load("pr_running.json", {"/model=\"mujoco\""});
+  const scene::Scene s = test::load_shipped("pr_running", {"/model=\"mujoco\""});
   scene::Scene rigid = s;
   rigid.pseudo_rigid.body = scene::PseudoRigid::BodyKind::kRigid;
   const robot::RobotModel model = robot::build_robot(rigid);
@@ -131,14 +128,14 @@ TEST_CASE("mujoco: the MJCF robot has the scene's mass, inertia and legs", "[muj
 TEST_CASE("mujoco: refining MuJoCo's step moves pr_running's strides towards the full model",
           "[mujoco]") {
   // The reference: the full model (rigid body), converged to 0.13 % in apex (docs/mujoco.md).
-  scene::Scene full = load("pr_running.json", {"/pseudo_rigid/body=\"rigid\""});
+  scene::Scene full = test::load_shipped("pr_running", {"/pseudo_rigid/body=\"rigid\""});
   full.simulation.duration = 3.0;
   RunOptions o;
   o.record_trajectory = false;
   const RunResult ref = simulate(full, o);
   REQUIRE(ref.run.status == reduced::RunStatus::kCompleted);
   auto in_mujoco = [&](double timestep) {
-    scene::Scene mj = load("pr_running.json", {"/model=\"mujoco\""});
+    scene::Scene mj = test::load_shipped("pr_running", {"/model=\"mujoco\""});
     mj.simulation.duration = 3.0;
     mj.mujoco.timestep = timestep;
     const RunResult r = simulate(mj, o);
@@ -162,7 +159,7 @@ TEST_CASE("mujoco: a leg spring MuJoCo cannot step ends diverged with MuJoCo's w
           "[mujoco][extremes]") {
   // A 1e9 N/m leg spring on a 1 g foot (omega 1e6 rad/s) at MuJoCo's 1 ms explicit spring.
   scene::Scene s =
-      load("pr_running.json", {"/model=\"mujoco\"", "/pseudo_rigid/leg_stiffness=1e9"});
+      test::load_shipped("pr_running", {"/model=\"mujoco\"", "/pseudo_rigid/leg_stiffness=1e9"});
   s.simulation.duration = 1.0;
   s.mujoco.timestep = 1e-3;
   const RunResult r = simulate(s);

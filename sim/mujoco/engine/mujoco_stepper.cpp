@@ -255,15 +255,11 @@ void MujocoStepper::reset(const ode::OdeSystem&, double t, const ode::Vec& y) {
   // A restart at the state the stepper holds (an event that changed nothing) keeps MuJoCo's
   // own state; a changed one (hip placement, a lift-off, a disturbance) is mapped in.
   if (!started_ || y.size() != y_.size() || !(y.array() == y_.array()).all()) {
-    if (y_.size() != y.size()) {
-      y_.resize(y.size());
-      y_prev_.resize(y.size());
-    }
     map_in(y);
+    // MuJoCo's forward pass at the mapped state, before the next step: that step's numbers
+    // depend on it (without it they differ in the last bits; map_in cleared the warm start).
     mj_forward(impl_->m, impl_->d);
-    map_out(y_);
-    // The round trip is exact to rounding; the run's own numbers are kept.
-    y_ = y;
+    y_ = y;  // the run's own numbers (the round trip through MuJoCo is exact to rounding)
   }
   started_ = true;
   t_ = t_prev_ = t;
@@ -357,10 +353,8 @@ void MujocoStepper::dense(double t, ode::Vec& y_out) const {
 }
 
 std::string MujocoStepper::failure_note() const {
-  std::string note =
-      std::string("MuJoCo ") +
-      (scene_.mujoco.integrator == scene::Mujoco::Integrator::kRk4 ? "RK4" : "Euler") + ", step " +
-      run::fmt(timestep_) + " s";
+  std::string note = std::string("MuJoCo ") + integrator_name(scene_.mujoco.integrator) +
+                     ", step " + run::fmt(timestep_) + " s";
   if (!warning_.empty()) note += "; " + warning_;
   return note;
 }
