@@ -13,6 +13,7 @@
 #include "optimize/sensitivity/design_sensitivity.hpp"
 #include "optimize/sensitivity/sensitivity_output.hpp"
 #include "sim/run/count_text.hpp"
+#include "sim/scene/scene.hpp"
 
 namespace pronk::app {
 
@@ -59,7 +60,7 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityArgs& args) {
   cmd->add_option("design", args.design_path, "design.json written by pronk optimize")->required();
   cmd->add_option("--out", args.out, "Output directory (default: sensitivity/ beside the design)");
   cmd->add_option("--model", args.model, "Evaluate in this model instead of the study's")
-      ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid", "mujoco"}));
+      ->check(CLI::IsMember(scene::model_names()));
   cmd->add_flag("--validation", args.validation, "Evaluate on the study's validation set");
   cmd->add_option("--physical", args.physical,
                   "plant: a physical number changes the robot only, the controller keeps the "

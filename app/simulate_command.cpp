@@ -16,6 +16,7 @@
 #include "sim/reduced/setpoint_check.hpp"
 #include "sim/robot/accuracy_check.hpp"
 #include "sim/run/count_text.hpp"
+#include "sim/scene/scene.hpp"
 #include "sim/simulate.hpp"
 
 namespace pronk::app {
@@ -31,7 +32,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("scene", args.scene_path, "Scene file (JSON)")->required();
   cmd->add_option("--model", args.model,
                   "Model: impulse, pulse, pseudo_rigid or mujoco (default: the scene's)")
-      ->check(CLI::IsMember({"impulse", "pulse", "pseudo_rigid", "mujoco"}));
+      ->check(CLI::IsMember(scene::model_names()));
   cmd->add_option("--set", args.overrides,
                   "Override a scene value: --set /json/pointer=value (repeatable)")
       ->type_name("/PTR=VALUE");

@@ -5,6 +5,7 @@
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
 #include "optimize/design_reader_detail.hpp"
+#include "sim/scene/scene.hpp"
 
 namespace pronk::optimize::design_detail {
 
@@ -38,7 +39,7 @@ std::string check_stage_record(io::JsonReader s, const json& node, const json& s
                   "\"" + name + "\"");
   }
   require(s, "model");
-  s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
+  s.choice_or("model", "", scene::model_names());
   required_string(s, "directory");
   read_numbers(
       s, node, "parameters", [](const std::string&) { return true; }, "");

@@ -15,6 +15,7 @@
 #include "optimize/output_lock.hpp"
 #include "optimize/progress.hpp"
 #include "sim/scene/robot_scaling.hpp"
+#include "sim/scene/scene.hpp"
 
 namespace pronk::optimize {
 
@@ -116,8 +117,8 @@ StageSpec parse_stage(io::JsonReader s, const StagedStudy& st, const json& raw,
   for (const auto& e : earlier)
     if (e.name == stage.name) throw s.error("name", "a name no earlier stage has", stage.name);
   if (!s.has("model"))
-    throw s.error("model", "the stage's model (impulse, pulse, pseudo_rigid, mujoco)", "nothing");
-  stage.model = s.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
+    throw s.error("model", "the stage's model: " + scene::model_names_expected(), "nothing");
+  stage.model = s.choice_or("model", "", scene::model_names());
   stage.start = s.string_or("start", "previous");
   bool start_ok = stage.start == "previous" || stage.start == "initial";
   for (const auto& e : earlier) start_ok = start_ok || e.name == stage.start;

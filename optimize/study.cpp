@@ -8,6 +8,7 @@
 #include "io/load/json_reader.hpp"
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
+#include "sim/scene/scene.hpp"
 
 namespace pronk::optimize {
 
@@ -482,7 +483,7 @@ Study parse_study(const json& doc, const std::string& file, const std::string& b
   apply_study_scene_overrides(r, doc, file, &scene_doc);
   // A study-level "model" runs every scenario in that model, whatever the scene says.
   if (r.has("model")) {
-    scene_doc["model"] = r.choice_or("model", "", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
+    scene_doc["model"] = r.choice_or("model", "", scene::model_names());
   } else {
     r.optional("model");
   }

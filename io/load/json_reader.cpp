@@ -271,15 +271,20 @@ std::string JsonReader::path_name_or(const std::string& key, const std::string& 
 
 std::string JsonReader::choice_or(const std::string& key, const std::string& fallback,
                                   std::initializer_list<const char*> choices) {
+  return choice_or(key, fallback, std::vector<std::string>(choices.begin(), choices.end()));
+}
+
+std::string JsonReader::choice_or(const std::string& key, const std::string& fallback,
+                                  const std::vector<std::string>& choices) {
   std::string expected = "one of";
-  for (const char* c : choices) expected += std::string(" \"") + c + "\"";
+  for (const std::string& c : choices) expected += " \"" + c + "\"";
   if (!has(key)) {
     read_.insert(key);
     return fallback;
   }
   const json& v = get(key);
   if (v.is_string()) {
-    for (const char* c : choices) {
+    for (const std::string& c : choices) {
       if (v.get<std::string>() == c) return c;
     }
   }

@@ -85,6 +85,8 @@ class JsonReader {
   /// A string that must be one of `choices`.
   std::string choice_or(const std::string& key, const std::string& fallback,
                         std::initializer_list<const char*> choices);
+  std::string choice_or(const std::string& key, const std::string& fallback,
+                        const std::vector<std::string>& choices);
   /// Array of exactly n finite numbers, each in [lo, hi].
   Eigen::VectorXd vector(const std::string& key, int n,
                          double lo = -std::numeric_limits<double>::infinity(),

@@ -409,12 +409,8 @@ void check_scene_consistency(const scene::Scene& s, const std::string& file) {
 // The top-level scalars: name, model, gravity, attitude formulation.
 void parse_scene_header(JsonReader& r, scene::Scene* s) {
   s->name = r.path_name_or("name", "scene");  // the default output directory out/<name>
-  const std::string model =
-      r.choice_or("model", "impulse", {"impulse", "pulse", "pseudo_rigid", "mujoco"});
-  s->model = model == "pulse"          ? scene::ModelKind::kPulse
-             : model == "pseudo_rigid" ? scene::ModelKind::kPseudoRigid
-             : model == "mujoco"       ? scene::ModelKind::kMujoco
-                                       : scene::ModelKind::kImpulse;
+  const std::string model = r.choice_or("model", "impulse", scene::model_names());
+  s->model = scene::model_kind(model).value_or(scene::ModelKind::kImpulse);
   if (s->model == scene::ModelKind::kMujoco && !scene::mujoco_available()) {
     throw InputError(
         r.file(), "/model",

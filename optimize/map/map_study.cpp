@@ -10,6 +10,7 @@
 #include "optimize/study.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 #include "sim/scene/robot_scaling.hpp"
+#include "sim/scene/scene.hpp"
 
 namespace pronk::optimize::map {
 
@@ -179,15 +180,14 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
 }
 
 scene::ModelKind model_of(const std::string& file, const std::string& pointer, const json& v) {
-  if (v == "impulse") return scene::ModelKind::kImpulse;
-  if (v == "pulse") return scene::ModelKind::kPulse;
-  if (v == "pseudo_rigid") return scene::ModelKind::kPseudoRigid;
-  if (v == "mujoco" && scene::mujoco_available()) return scene::ModelKind::kMujoco;
+  const auto kind = v.is_string() ? scene::model_kind(v.get<std::string>()) : std::nullopt;
+  if (kind && (*kind != scene::ModelKind::kMujoco || scene::mujoco_available())) return *kind;
   throw io::InputError(file, pointer,
-                       scene::mujoco_available()
-                           ? "\"impulse\", \"pulse\", \"pseudo_rigid\" or \"mujoco\""
-                           : "\"impulse\", \"pulse\" or \"pseudo_rigid\" (this pronk was built "
-                             "without MuJoCo: install libmujoco-dev and rebuild for \"mujoco\")",
+                       scene::model_names_expected() +
+                           (scene::mujoco_available()
+                                ? ""
+                                : " (this pronk was built without MuJoCo: install libmujoco-dev "
+                                  "and rebuild for \"mujoco\")"),
                        io::describe(v));
 }
 

@@ -2,18 +2,31 @@
 
 namespace pronk::scene {
 
+const std::vector<std::string>& model_names() {
+  static const std::vector<std::string> names = {"impulse", "pulse", "pseudo_rigid", "mujoco"};
+  return names;
+}
+
 std::string_view to_string(ModelKind k) {
-  switch (k) {
-    case ModelKind::kImpulse:
-      return "impulse";
-    case ModelKind::kPulse:
-      return "pulse";
-    case ModelKind::kPseudoRigid:
-      return "pseudo_rigid";
-    case ModelKind::kMujoco:
-      return "mujoco";
+  const auto i = static_cast<size_t>(k);
+  return i < model_names().size() ? std::string_view(model_names()[i]) : std::string_view("?");
+}
+
+std::optional<ModelKind> model_kind(std::string_view name) {
+  const std::vector<std::string>& names = model_names();
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<ModelKind>(i);
   }
-  return "?";
+  return std::nullopt;
+}
+
+std::string model_names_expected() {
+  const std::vector<std::string>& names = model_names();
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + names[i] + "\"");
+  }
+  return out;
 }
 
 bool mujoco_available() {

@@ -23,6 +23,13 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 /// as the engine (sim/mujoco/; optional at build time, mujoco_available()).
 enum class ModelKind { kImpulse, kPulse, kPseudoRigid, kMujoco };
 std::string_view to_string(ModelKind k);
+/// Every model's name as scenes, studies and `--model` spell it, in ModelKind order (the one
+/// list: a model added is added here and to ModelKind).
+const std::vector<std::string>& model_names();
+/// The model named `name`, or nothing for a name that is none of model_names().
+std::optional<ModelKind> model_kind(std::string_view name);
+/// The names as an error's "expected": "impulse", "pulse", "pseudo_rigid" or "mujoco".
+std::string model_names_expected();
 
 /// The full model's robot and controller (legs, feet, hip placement, the `pseudo_rigid`
 /// settings): pseudo_rigid and mujoco. The reduced models are the others.

@@ -338,10 +338,10 @@ bool MujocoStepper::retake(const ode::OdeSystem&, double t) {
     warning_.clear();
     return false;
   }
-  ode::Vec y(y_.size());
-  map_out(y);
-  if (!y.allFinite()) return false;
-  y_ = y;
+  retaken_.resize(y_.size());
+  map_out(retaken_);
+  if (!retaken_.allFinite()) return false;
+  y_.swap(retaken_);
   t_ = t;
   return true;
 }

@@ -77,6 +77,7 @@ class MujocoStepper final : public ode::Stepper {
   double timestep_ = 1e-3;
   double t_ = 0.0, t_prev_ = 0.0;
   ode::Vec y_, y_prev_;
+  ode::Vec retaken_;  ///< retake()'s state before it is accepted (no allocation per retake)
   bool started_ = false;
   ode::SolverCounters counters_;
   std::string warning_;  ///< the MuJoCo warning that failed a step (empty: none)
