@@ -8,18 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "io/load/input_error.hpp"
+#include "io/load/json_document.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::io {
-
-/// Reads and parses a JSON file; InputError on a missing file, a directory, nesting deeper
-/// than kMaxJsonDepth or a syntax error.
-nlohmann::json read_json_file(const std::string& path);
-
-/// Applies "--set /json/pointer=value" overrides to a document. The value is
-/// parsed as JSON (a bare word that is not JSON is taken as a string). The
-/// parent of the pointer must exist. InputError names the override.
-void apply_override(nlohmann::json& doc, const std::string& assignment);
 
 /// Builds a scene from a document; `file` names the source in error messages.
 scene::Scene parse_scene(const nlohmann::json& doc, const std::string& file);
