@@ -28,7 +28,8 @@ std::string_view to_string(ModelKind k);
 const std::vector<std::string>& model_names();
 /// The model named `name`, or nothing for a name that is none of model_names().
 std::optional<ModelKind> model_kind(std::string_view name);
-/// The names as an error's "expected": "impulse", "pulse", "pseudo_rigid" or "mujoco".
+/// The names of the models this build runs, as an error's "expected": "impulse", "pulse",
+/// "pseudo_rigid" or "mujoco" (without MuJoCo: the first three).
 std::string model_names_expected();
 
 /// The full model's robot and controller (legs, feet, hip placement, the `pseudo_rigid`
