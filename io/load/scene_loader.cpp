@@ -1,11 +1,7 @@
 #include "io/load/scene_loader.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <optional>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
