@@ -1,12 +1,12 @@
 // pronk's full model against MuJoCo on the same running robot (studies/scenes/pr_running.json,
 // 10 s from 10 deg of roll and a 0.2 m offset): the full model's rigid and four-mass bodies on
-// "method": "auto", and "model": "mujoco" (the same controller and run loop, MuJoCo stepping the
-// robot's MJCF model) with Euler at 2, 1, 0.5, 0.25 and 0.125 ms and RK4 at 1 ms. Per setting:
-// median process CPU time over `repeats` interleaved runs, MuJoCo's mj_step CPU alone, strides,
-// and the first 10 strides against a refined reference (the full model, rigid body, Verlet at
-// 4e-5 s, a third of auto's step): largest relative apex and stance-time differences and the
-// largest touchdown-attitude difference. One JSON document on stdout.
-// Usage: bench_mujoco [repeats]
+// "method": "auto" (the rigid body also with quasi-static feet), and "model": "mujoco" (the same
+// controller and run loop, MuJoCo stepping the robot's MJCF model) with Euler at 2, 1, 0.5, 0.25
+// and 0.125 ms and RK4 at 1 ms. Per setting: median process CPU time over `repeats` interleaved
+// runs, MuJoCo's mj_step CPU alone, strides, and the first 10 strides against a refined reference
+// (the full model, rigid body, Verlet at 4e-5 s, a third of auto's step): largest relative apex and
+// stance-time differences and the largest touchdown-attitude difference. One JSON document on
+// stdout. Usage: bench_mujoco [repeats]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -53,7 +53,12 @@ RunResult run(const std::vector<std::string>& set, double* cpu) {
 std::vector<Setting> settings() {
   std::vector<Setting> v = {
       {"pronk_rigid_auto", {R"(/pseudo_rigid/body="rigid")"}, {}, {}, {}},
-      {"pronk_four_mass_auto", {R"(/pseudo_rigid/body="four_masses")"}, {}, {}, {}}};
+      {"pronk_four_mass_auto", {R"(/pseudo_rigid/body="four_masses")"}, {}, {}, {}},
+      {"pronk_rigid_quasi_static_feet_auto",
+       {R"(/pseudo_rigid/body="rigid")", R"(/pseudo_rigid/feet="quasi_static")"},
+       {},
+       {},
+       {}}};
   for (double dt : {2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4}) {
     char name[48];
     std::snprintf(name, sizeof name, "mujoco_euler_%gms", dt * 1e3);

@@ -102,6 +102,7 @@ json late_settings(const scene::PseudoRigid& p) {
   return {{"placement_trim_gain", p.placement_trim_gain},
           {"attitude_trim_max", p.attitude_trim_max},
           {"actuator_gain", p.actuator_gain},
+          {"feet", p.feet == scene::PseudoRigid::Feet::kQuasiStatic ? "quasi_static" : "mass"},
           {"attitude_sensor_bias_deg",
            {p.attitude_sensor_bias[0] * 180.0 / M_PI, p.attitude_sensor_bias[1] * 180.0 / M_PI}}};
 }
@@ -136,6 +137,16 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   p.contact_damping = r.number_or("contact_damping", p.contact_damping, 0.0, 1e9);
   p.strain_budget = r.number_or("strain_budget", p.strain_budget, 1e-12, 0.5);
   p.penetration_budget = r.number_or("penetration_budget", p.penetration_budget, 1e-12, 1.0);
+  p.feet = r.choice_or("feet", "mass", {"mass", "quasi_static"}) == "quasi_static"
+               ? scene::PseudoRigid::Feet::kQuasiStatic
+               : scene::PseudoRigid::Feet::kMass;
+  if (p.feet == scene::PseudoRigid::Feet::kQuasiStatic &&
+      p.body != scene::PseudoRigid::BodyKind::kRigid &&
+      p.legs == scene::PseudoRigid::Legs::kSpring) {
+    throw r.error("feet",
+                  "\"mass\" with \"body\": \"four_masses\" (quasi-static feet act on a rigid body)",
+                  "\"quasi_static\"");
+  }
   given->foot_mass = r.has("foot_mass");
   p.foot_mass = r.number_or("foot_mass", p.foot_mass, 1e-6, 1e3);
   parse_leg_stiffness(r, node, &p, given);
@@ -366,6 +377,13 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
         }
       } else if (!s.pseudo_rigid.hip_rotation) {
         out.push_back("/pseudo_rigid/level_feet");  // levels the feet when placing the legs
+      }
+      if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kSpring &&
+          s.pseudo_rigid.feet == scene::PseudoRigid::Feet::kQuasiStatic) {
+        // A massless foot: no mass, and nothing for the ground's damper to damp (the ground
+        // spring stays, in series with the leg).
+        out.push_back("/pseudo_rigid/foot_mass");
+        out.push_back("/pseudo_rigid/contact_damping");
       }
       break;
   }

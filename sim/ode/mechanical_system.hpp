@@ -51,6 +51,17 @@ class MechanicalSystem : public OdeSystem {
   virtual double dissipate(double /*t*/, double /*h*/, const Vec& /*y_ref*/, Vec& /*y*/) const {
     return 0.0;
   }
+  /// Optional relaxation: states that are neither positions nor momenta (first-order states,
+  /// e.g. a massless foot's ground position under a creep law) are advanced over h [s] at the
+  /// step's start, at fixed positions and momenta, implicitly; both kicks then read forces on
+  /// the relaxed states, so the step's work is that of one potential. Returns the energy to
+  /// book as dissipated [J] (the potential energy the relaxation released at fixed positions);
+  /// *forces_moved: whether it changed the forces on the positions.
+  virtual bool has_relaxation() const { return false; }
+  virtual double relax(double /*h*/, Vec& /*y*/, bool* forces_moved) const {
+    *forces_moved = false;
+    return 0.0;
+  }
   /// With the dissipation split, after each step from y0 to y1: may correct the momenta of
   /// y1 so that the step's energy change is the exact one where a potential is only
   /// piecewise quadratic (one-sided contact) and the step crossed its kink.

@@ -47,6 +47,8 @@ class VerletStepper final : public Stepper, public VerletInfo {
         slope_b_(Vec::Zero(n)),
         p_half_(Vec::Zero(n)),
         y_ref_(Vec::Zero(n)),
+        y_start_(Vec::Zero(n)),
+        f_start_(Vec::Zero(n)),
         work_(Vec::Zero(n)),
         mask_(Vec::Zero(n)),
         q_mask_(Vec::Zero(n)) {}
@@ -57,6 +59,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     sys.momentum_mask(mask_);
     split_ = sys.has_dissipation_split();
     drift_ = sys.has_drift();
+    relax_ = sys.has_relaxation();
     block_ = std::max(1, sys.momentum_block());
     const bool has_metric = sys.kinetic_energy(y) >= 0.0;
     if (budget_ > 0.0 && !has_metric) {
@@ -260,11 +263,28 @@ class VerletStepper final : public Stepper, public VerletInfo {
                          double h, double t_new) {
     t_new_ = t_new;
     double dissipated = 0.0;
+    // First-order states relax first, at the step's start (MechanicalSystem::relax; its
+    // energy booked by the system), so both kicks read the same potential: relaxing between
+    // the kicks makes the kicks' work differ from the potential's change by half the relaxed
+    // force times the step's displacement, an error of first order in h.
+    const Vec* ys = &y0;
+    const Vec* fs = &f0;
+    if (relax_) {
+      y_start_ = y0;
+      bool moved = false;
+      dissipated += sys.relax(h, y_start_, &moved);
+      if (moved || !(y_start_.array() == y0.array()).all()) {
+        forces(sys, t0, y_start_, f_start_);
+        ++counters_.rhs_evaluations;
+        ys = &y_start_;
+        fs = &f_start_;
+      }
+    }
     // Kick: p_half = p + h/2 F(q, p); positions unchanged. With the split, the dissipative
     // forces follow at fixed positions, implicitly: together a backward Euler half step of
     // the momenta, so the positions drift with damped momenta.
-    y_new_.noalias() = y0 + (0.5 * h) * mask_.cwiseProduct(f0);
-    if (split_) dissipated += sys.dissipate(t0, 0.5 * h, y0, y_new_);
+    y_new_.noalias() = *ys + (0.5 * h) * mask_.cwiseProduct(*fs);
+    if (split_) dissipated += sys.dissipate(t0, 0.5 * h, *ys, y_new_);
     // Drift: q_new = q + h G(p_half) (or the system's own flow, MechanicalSystem::drift).
     if (drift_) {
       sys.drift(h, y_new_);
@@ -274,7 +294,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     }
     // Closing kick with F at the new positions and the predicted momentum p*.
     p_half_ = y_new_;
-    y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(f0);
+    y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(*fs);
     forces(sys, t_new, y_new_, f_new_);
     ++counters_.rhs_evaluations;
     y_new_.noalias() = p_half_ + (0.5 * h) * mask_.cwiseProduct(f_new_);
@@ -282,7 +302,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
       y_ref_ = y_new_;
       dissipated += sys.dissipate(t_new, 0.5 * h, y_ref_, y_new_);
       fd_new_ = (2.0 / h) * (y_new_ - y_ref_);
-      sys.correct_step(y0, y_new_);
+      sys.correct_step(*ys, y_new_);
     } else {
       fd_new_.setZero();
     }
@@ -427,11 +447,13 @@ class VerletStepper final : public Stepper, public VerletInfo {
   mutable Vec slope_a_, slope_b_;  ///< dense(): the momentum slopes with the dissipation
   Vec p_half_;                     ///< state after the drift (momenta at the half step)
   Vec y_ref_;                      ///< split: the state before the closing dissipative update
+  Vec y_start_, f_start_;          ///< relax: the step's start after the relaxation, its forces
   Vec work_;                       ///< scratch: the net force
   Vec mask_;                       ///< 1 on momentum states, 0 on positions
   Vec q_mask_;                     ///< 1 - mask_
   bool split_ = false;             ///< the system's dissipation split is applied
   bool drift_ = false;             ///< the system drifts its positions itself
+  bool relax_ = false;             ///< the system relaxes first-order states at the step start
   int block_ = 1;                  ///< momentum entries per rotation block
   bool metric_ = false;            ///< T_net is tracked (a metric, and a split or a budget)
   double k_net_ = 0.0;             ///< kinetic energy of the held force at t_ [N^2/kg]

@@ -14,7 +14,7 @@ using Eigen::Vector3d;
 /// Energy changes are booked as hip work. Feet that crossed together (a symmetric landing)
 /// switch together: an event fires only once.
 void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
-  const double e_before = msys_.energies(y).total();
+  const double e_before = sys_.energies(y).total();
   auto any_free = [&] {
     bool any = false;
     for (size_t k = 0; k < legs_; ++k) any = any || sys_.free(k);
@@ -22,6 +22,10 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
   };
   const bool was_free = any_free();
   for (size_t i = 0; i < legs_; ++i) {
+    if (sys_.quasi_static()) {
+      quasi_static_switch(i, i == first, y);
+      continue;
+    }
     const double z = y[6 * model_.foot[i] + 2];
     const bool land = i == first ? !sys_.free(i) : !sys_.free(i) && z <= 0.0;
     const bool lift = i == first ? sys_.free(i) : sys_.free(i) && z >= kFootLift;
@@ -57,6 +61,26 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
   }
   set_actuators();
   book_work(e_before, y);
+}
+
+/// Quasi-static foot i at a foot event (`crossed`: its own): it lands when it reached the
+/// ground in the air, lifts off when the ground no longer presses it (RobotSystem::foot_event).
+void RobotRun::quasi_static_switch(size_t i, bool crossed, ode::Vec& y) {
+  if (!crossed && !quasi_static_due(i, y)) return;
+  if (sys_.pinned(i)) {  // lifts off: the ground no longer presses it
+    sys_.lift_foot(i, y);
+    data_.push[i] = -sys_.foot_direction()[i];
+  } else if (!sys_.free(i) || sys_.foot_event(i, y) < 0.0) {
+    sys_.land_foot(i, y);  // reached the ground, which would press it
+  } else {
+    sys_.set_free(i, false);  // a lifted foot's hip is locked once it has risen kFootLift
+  }
+}
+
+/// Quasi-static foot i is due to switch at y without a crossing of its own.
+bool RobotRun::quasi_static_due(size_t i, const ode::Vec& y) const {
+  if (sys_.foot_event(i, y) < 0.0) return true;
+  return sys_.free(i) && !sys_.pinned(i) && sys_.foot_position(i, y).z() >= kFootLift;
 }
 
 /// Foot i lifts off: its slide (a line again) takes the leg along its current direction,

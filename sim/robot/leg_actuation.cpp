@@ -99,13 +99,17 @@ double RobotRun::energy_thrust(double t, const ode::Vec& y) {
   std::vector<Vector3d> u, arm;
   double K = 0.0, C = 0.0, s_v = 0.0, f_mean = 0.0;
   for (size_t i = 0; i < legs_; ++i) {
-    if (data_.armed_force[i] == 0.0 || model_.leg_spring[i] < 0) continue;
-    const Vector3d foot = y.segment<3>(6 * model_.foot[i]);
+    if (data_.armed_force[i] == 0.0 || (model_.leg_spring[i] < 0 && !sys_.quasi_static())) {
+      continue;
+    }
+    const Vector3d foot = sys_.foot_position(i, y);
     const Vector3d hip = msys_.node_position(model_.hip_node[i], y);
     const Vector3d leg = hip - foot;
     if (foot.z() > kFootLift || !(leg.z() > 0.1 * leg.norm())) continue;  // not pushing up
     const double dz = leg.z() / leg.norm();
-    const double rest = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
+    const double rest = sys_.quasi_static()
+                            ? sys_.foot_rest()[i]
+                            : data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
     K += belief_.pseudo_rigid.leg_stiffness * dz * dz;
     C += belief_.pseudo_rigid.leg_damping * dz * dz;
     s_v += (rest - leg.norm()) * dz;

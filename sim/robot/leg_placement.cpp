@@ -116,11 +116,17 @@ void RobotRun::place_legs(double t, ode::Vec& y) {
   Matrix3d R_td;
   const std::vector<Vector3d> u = placement(t, y, s, R_td);
   const std::vector<double> rest = level_rest_lengths(s, R_td, u);
-  const double e_before = msys_.energies(y).total();
+  const double e_before = sys_.energies(y).total();
   const pr::BodyFrame f = msys_.frames(y)[model_.body];
   const Vector3d w = msys_.body_omega(model_.body, y);
   for (size_t i = 0; i < legs_; ++i) {
-    if (sys_.free(i)) continue;  // still on the ground
+    if (sys_.free(i)) continue;       // still on the ground
+    if (sys_.quasi_static()) {        // a massless foot: turned and set to its new rest length
+      sys_.foot_rest()[i] = rest[i];  // (its shortening, its spring's deflection, kept)
+      sys_.foot_direction()[i] = u[i];
+      data_.push[i] = -u[i];
+      continue;
+    }
     const int foot = model_.foot[i];
     const double m = model_.mechanism.masses[foot].mass;
     const pr::NodeRef ghost{pr::NodeRef::Kind::kGhost,
@@ -205,7 +211,9 @@ std::vector<double> RobotRun::level_rest_lengths(const control::BodyState& s, co
                                                  const std::vector<Vector3d>& u) const {
   std::vector<double> rest(legs_);
   for (size_t i = 0; i < legs_; ++i) {
-    rest[i] = data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
+    rest[i] = sys_.quasi_static()
+                  ? sys_.foot_rest()[i]
+                  : data_.inputs.rest_length[static_cast<size_t>(model_.leg_spring[i])];
   }
   if (!(prs_.level_feet && free_stance_)) return rest;
   double z_mean = 0.0;

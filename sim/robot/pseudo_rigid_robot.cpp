@@ -90,6 +90,12 @@ void add_robot_leg(const scene::Scene& s, size_t i, const Vector3d& hip, const V
                                 std::to_string(s.legs.length) + " m");
   }
   r.rest_length.push_back(rest);
+  if (r.quasi_static_feet) {  // the feet are RobotSystem's
+    r.foot.push_back(-1);
+    r.slide.push_back(-1);
+    r.leg_spring.push_back(-1);
+    return;
+  }
   const Vector3d arm = R * (h - rest * Vector3d::UnitZ());
   const pr::NodeRef foot =
       pr::add_mass(m, name + ".foot", p.foot_mass, b.com + arm, b.velocity + b.omega.cross(arm));
@@ -173,6 +179,7 @@ RobotModel build_robot(const scene::Scene& s) {
   const scene::PseudoRigid& p = s.pseudo_rigid;
   RobotModel r;
   r.spring_legs = p.legs == scene::PseudoRigid::Legs::kSpring && !s.legs.body_only;
+  r.quasi_static_feet = r.spring_legs && p.feet == scene::PseudoRigid::Feet::kQuasiStatic;
   r.body_mass = s.body.mass;
   pr::Mechanism& m = r.mechanism;
   m.name = s.name;
@@ -191,10 +198,19 @@ RobotModel build_robot(const scene::Scene& s) {
       s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
   const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
   if (dummy && rigid) throw std::invalid_argument("a rigid body has no dummy hip masses");
+  if (r.quasi_static_feet && !rigid) {
+    throw std::invalid_argument("quasi-static feet act on a rigid body (\"body\": \"rigid\")");
+  }
+  if (r.quasi_static_feet && !p.hip_rotation) {
+    // (their stance is the free hip's slot; a locked hip's line is not implemented)
+    throw std::invalid_argument(
+        "quasi-static feet need free stance hips (\"hip_rotation\"): a pinned foot is held "
+        "by its hip's slot");
+  }
   Vector3d offset = Vector3d::Zero();
   const pr::BodySpec b = add_robot_body(s, hips, dummy, rigid, r, &offset);
   for (size_t i = 0; i < hips.size(); ++i) add_robot_leg(s, i, hips[i], offset, dummy, b, r);
-  if (r.spring_legs) add_robot_ground(p, r);
+  if (r.spring_legs && !r.quasi_static_feet) add_robot_ground(p, r);
   if (p.internal_auto || p.contact_auto) choose_robot_stiffness(p, r);
   std::string why;
   if (!m.validate(&why)) throw std::invalid_argument("robot mechanism: " + why);

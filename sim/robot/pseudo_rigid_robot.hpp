@@ -34,6 +34,10 @@ struct RobotModel {
   std::vector<Eigen::Vector3d> direction;
   int ground = -1;  ///< ground plane surface index; -1 without feet
   bool spring_legs = false;
+  /// Spring legs with quasi-static (massless) feet: no foot masses, slides, leg springs or
+  /// ground in the mechanism; RobotSystem holds the feet (robot_system_feet.cpp). foot, slide
+  /// and leg_spring are -1, rest_length holds the legs' nominal rest lengths.
+  bool quasi_static_feet = false;
   double body_mass = 0.0;                  ///< scene body mass (dummies included) [kg]
   pseudorigid::StiffnessChoice stiffness;  ///< what "auto" chose (if asked)
 };

@@ -72,11 +72,20 @@ class FootEvent final : public ode::EventFunction {
  public:
   FootEvent(const RobotSystem& sys, size_t leg, int foot) : sys_(sys), leg_(leg), foot_(foot) {}
   double value(double, const ode::Vec& y) const override {
+    // A quasi-static foot lands falling through the ground and lifts off when the ground's
+    // normal force on it falls through zero (RobotSystem::foot_event).
+    // A lifted quasi-static foot's hip is locked, as a foot mass's, once it rises kFootLift.
+    if (foot_ < 0) {
+      if (lifting()) return sys_.foot_position(leg_, y).z() - kFootLift;
+      return sys_.foot_event(leg_, y);
+    }
     return y[6 * foot_ + 2] - (sys_.free(leg_) ? kFootLift : 0.0);
   }
-  int direction() const override { return sys_.free(leg_) ? 1 : -1; }
+  int direction() const override { return sys_.free(leg_) && (foot_ >= 0 || lifting()) ? 1 : -1; }
 
  private:
+  /// A quasi-static foot in the air whose hip is still free.
+  bool lifting() const { return foot_ < 0 && sys_.free(leg_) && !sys_.pinned(leg_); }
   const RobotSystem& sys_;
   size_t leg_;
   int foot_;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sim/pseudorigid/stability.hpp"
+#include "sim/robot/feet_step_bound.hpp"
 
 namespace pronk::robot::detail {
 
@@ -91,13 +92,16 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
   total_mass_ = mech.total_mass();
   mon.energy_scale =
       total_mass_ * g_ * (std::max(0.0, scene.initial.position.z()) + scene.controller.hop_height);
-  balance0_ = msys_.energies(mech.initial_state()).total();
+  balance0_ = sys_.energies(sys_.initial_state()).total();
   blowup_ = mech.simulation.energy_blowup_factor * mon.energy_scale;
   run_.balance0 = balance0_;
   run_.blowup = blowup_;
   solver_ = solver_options(prs_, mon.energy_scale);
   verlet_limit_ =
       solver_.method == ode::Method::kVerlet ? 2.0 / pr::max_frequency_bound(mech) : 0.0;
+  if (model.quasi_static_feet && solver_.method == ode::Method::kVerlet) {
+    verlet_limit_ = 2.0 / quasi_static_omega(scene, model);  // the body on its landed feet
+  }
 }
 
 run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
@@ -122,19 +126,41 @@ run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
     case kFallTilt:
       end_run(reduced::RunStatus::kFell, reduced::tilted_reason(scene_, t));
       return run::Next::kStop;
+    default:
+      break;
+  }
+  run::Next next = run::Next::kContinue;
+  switch (event) {
     case kApex:
       on_apex(t, y);
-      return run::Next::kContinue;
+      break;
     case kTouchdown:
-      return on_touchdown(t, y);
+      next = on_touchdown(t, y);
+      break;
     case kBottom:
       on_bottom(t, y);
-      return run::Next::kContinue;
+      break;
     case -1:
-      return on_time(t, y);
+      next = on_time(t, y);
+      break;
     default:
       on_foot(static_cast<size_t>(event - kFoot), t, y);
-      return run::Next::kContinue;
+      break;
+  }
+  // (A foot event switched every foot due with it: on_foot.)
+  if (sys_.quasi_static() && free_stance_ && event < kFoot) catch_up_feet(t, y);
+  return next;
+}
+
+/// Quasi-static feet whose switch fell on this event's instant without a crossing of their
+/// own (a level drop: every foot reaches the ground as the CoM crosses the leg length): a foot
+/// in the air at or below the ground lands, a landed foot the ground no longer presses lifts.
+void RobotRun::catch_up_feet(double t, ode::Vec& y) {
+  for (size_t i = 0; i < legs_; ++i) {
+    if (quasi_static_due(i, y)) {
+      on_foot(i, t, y);
+      return;  // (on_foot switches every foot due with it)
+    }
   }
 }
 
@@ -142,7 +168,7 @@ run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
 /// false ends the run as diverged.
 bool RobotRun::energy_ok(double t, const ode::Vec& y, const ode::Stepper& stepper) {
   const double balance =
-      msys_.energies(y).total() + run_.dissipated - run_.work - result.monitors.hip_work;
+      sys_.energies(y).total() + run_.dissipated - run_.work - result.monitors.hip_work;
   double drift = std::abs(balance - balance0_);
   double t_blowup = t;
   if (run_.blowup_time >= 0.0) {  // a sample on the way blew up first
@@ -204,8 +230,9 @@ void RobotRun::on_apex(double t, ode::Vec& y) {
   if (!run_.stance && model_.spring_legs) {
     // Foot vibration on the leg springs (free fall: the springs would be at rest).
     const Com c = body_com(model_, y);
-    double e = msys_.energies(y).leg;
+    double e = sys_.energies(y).leg;
     for (int f : model_.foot) {
+      if (f < 0) continue;  // (quasi-static feet: their legs' energy is all)
       const double m = model_.mechanism.masses[f].mass;
       const Vector3d v = y.segment<3>(6 * f + 3) / m - c.v;
       e += 0.5 * m * v.squaredNorm();
@@ -283,7 +310,7 @@ void RobotRun::apply_disturbance(const scene::Disturbance& d, ode::Vec& y) {
   const pr::BodyFrame f = msys_.frames(y)[model_.body];
   const Vector3d dw = f.rotation * (scene_.body.inertia.inverse() * d.angular_impulse);
   const auto& b = model_.mechanism.bodies[model_.body];
-  const double e_before = msys_.energies(y).total();
+  const double e_before = sys_.energies(y).total();
   const int rot = sys_.rotation_state();
   if (rot >= 0) {  // rigid body: dp on its CoM mass, dL = R H
     y.segment<3>(6 * b.first_mass + 3) += d.linear_impulse;

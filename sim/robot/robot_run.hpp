@@ -50,7 +50,7 @@ class RobotRun final : public run::HybridModel {
   const ode::SolverOptions& solver() const { return solver_; }
   int dimension() const { return sys_.dimension(); }
   ode::ErrorNorm error_norm() const { return sys_.error_norm(); }
-  ode::Vec initial_state() const { return model_.mechanism.initial_state(); }
+  ode::Vec initial_state() const { return sys_.initial_state(); }
   /// Before the run: a run starting in the air places its legs for the first touchdown.
   void prepare(ode::Vec& y) {
     if (model_.spring_legs && prs_.hip_rotation) place_legs(0.0, y);
@@ -138,6 +138,7 @@ class RobotRun final : public run::HybridModel {
     result.run.strides.push_back(current_);
     result.stride_actuator_force.push_back(data_.stride_force);
     result.stride_slip.push_back(run_.stride_slip);
+    result.stride_contact.push_back(data_.spring_stance);
     have_stride_ = false;
   }
   void set_actuators() { sys_.set_actuators(data_.leg_force, data_.push); }
@@ -161,7 +162,7 @@ class RobotRun final : public run::HybridModel {
     s.rotation = s.attitude.toRotationMatrix();
   }
   void book_work(double e_before, const ode::Vec& y) {
-    book_hip_work(result.monitors, msys_.energies(y).total() - e_before);
+    book_hip_work(result.monitors, sys_.energies(y).total() - e_before);
   }
   bool energy_ok(double t, const ode::Vec& y, const ode::Stepper& stepper);
   void on_apex(double t, ode::Vec& y);
@@ -171,6 +172,9 @@ class RobotRun final : public run::HybridModel {
   double energy_thrust(double t, const ode::Vec& y);
   void on_foot(size_t first, double t, ode::Vec& y);
   void lift_foot(size_t i, ode::Vec& y);
+  void quasi_static_switch(size_t i, bool crossed, ode::Vec& y);
+  void catch_up_feet(double t, ode::Vec& y);
+  bool quasi_static_due(size_t i, const ode::Vec& y) const;
   run::Next on_time(double t, ode::Vec& y);
   void apply_disturbance(const scene::Disturbance& d, ode::Vec& y);
   void place_legs(double t, ode::Vec& y);

@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include "sim/mujoco/mujoco_simulator.hpp"
+#include "sim/pseudorigid/scene_probe.hpp"
 #include "sim/reduced/run_limits.hpp"
+#include "sim/robot/feet_step_bound.hpp"
 #include "sim/robot/robot_run.hpp"
 
 namespace pronk::robot {
@@ -37,9 +39,35 @@ scene::Scene with_chosen_method(const scene::Scene& scene, RobotModel* model,
   request.h_max = p.solver.h_max;
   request.t_end = scene.simulation.duration;
   request.restarts = true;  // touchdowns, apexes, foot switches
-  *choice = pr::choose_method(model->mechanism, request);
+  if (model->quasi_static_feet) {
+    // The stiff modes are the body's on its landed feet (feet_step_bound.hpp), which the
+    // mechanism (the body alone) does not have: probed as contacts with that frequency.
+    pr::SceneProbe probe = pr::probe_scene(model->mechanism);
+    probe.omega_max = probe.omega_bound = quasi_static_omega(scene, *model);
+    probe.contact = probe.dissipation = probe.dissipation_split = true;
+    *choice = pr::choose_method(probe, request);
+  } else {
+    *choice = pr::choose_method(model->mechanism, request);
+  }
   apply_to_scene(*choice, &chosen, model);
   return chosen;
+}
+
+/// A fixed verlet step past the quasi-static feet's stability bound (feet_step_bound.hpp).
+std::optional<reduced::LimitBreach> feet_step_breach(const scene::Scene& scene,
+                                                     const RobotModel& model,
+                                                     const ode::SolverOptions& solver) {
+  if (!model.quasi_static_feet || solver.method != ode::Method::kVerlet) return std::nullopt;
+  const double omega = quasi_static_omega(scene, model);
+  if (!(solver.h_fixed > 2.0 / omega)) return std::nullopt;
+  reduced::LimitBreach b;
+  b.field = "h_fixed";
+  b.found = "verlet step " + run::fmt(solver.h_fixed) + " s";
+  b.expected =
+      "at most the quasi-static feet's stability bound 2/omega = " + run::fmt(2.0 / omega) +
+      " s (omega = " + run::fmt(omega) +
+      " rad/s: the rigid body on its landed feet's slot and leg springs)";
+  return b;
 }
 
 /// One run of the built robot on the scene's solver.
@@ -52,7 +80,8 @@ RobotRunResult run_once(const scene::Scene& scene, const RobotModel& model,
   auto stepper = ode::make_stepper(robot->solver(), robot->dimension(), robot->error_norm());
   ode::Vec y = robot->initial_state();
   robot->prepare(y);
-  const auto too_long = reduced::fixed_step_breach(scene, robot->solver());
+  auto too_long = reduced::fixed_step_breach(scene, robot->solver());
+  if (!too_long) too_long = feet_step_breach(scene, model, robot->solver());
   const run::HybridEnd end = too_long ? robot->refuse(*stepper, y, too_long->reason())
                                       : run::run_hybrid(*robot, *stepper, 0.0, y);
   robot->finish(end.t, end.y, *stepper);

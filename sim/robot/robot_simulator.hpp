@@ -69,6 +69,9 @@ struct RobotRunResult {
   std::vector<std::vector<double>> stride_actuator_force;
   /// Per stride: largest horizontal foot travel during the stance [m].
   std::vector<double> stride_slip;
+  /// Per stride (free stance hips): the stance's measured contact time, first foot down to
+  /// the last foot up, as the next placement plans with it [s].
+  std::vector<double> stride_contact;
   RobotMonitors monitors;
   /// "model": "mujoco": the robot's MJCF model, its keyframe "initial" the run's start (the
   /// outputs write it as robot.xml); empty for the other models.

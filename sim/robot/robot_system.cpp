@@ -25,6 +25,21 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::MechanismInputs& inp
   for (const auto& ms : model.mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   rotation_ = sys_.rotation_state(model.body);
   extra_ = fp_ = fm_ = ode::Vec::Zero(actuator_force_size());
+  if (model.quasi_static_feet) {
+    qs_states_ = 2 * static_cast<int>(model.hip.size());
+    rest_ = model.rest_length;
+    dir_ = model.direction;
+    slot_.assign(model.hip.size(), Vector3d::UnitY());
+    pinned_.assign(model.hip.size(), false);
+    mu_ = settings.friction;
+    v_slip_ = settings.slip_velocity;
+    k_leg_ = settings.leg_stiffness;
+    k_slot_ = settings.internal_stiffness;
+    k_ground_ = settings.contact_stiffness;
+    c_leg_ = settings.leg_damping;
+    land_force_ = 1e-3 * model.mechanism.total_mass() * -model.mechanism.gravity.z() /
+                  static_cast<double>(model.hip.size());
+  }
 }
 
 int RobotSystem::actuator_force_size() const {
@@ -36,8 +51,8 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
 }
 
 Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const {
-  if (!free_[i] || model_.foot[i] < 0) return R * push_[i];
-  const Vector3d d = sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i]);
+  if (!free_[i] || (model_.foot[i] < 0 && qs_states_ == 0)) return R * push_[i];
+  const Vector3d d = sys_.node_position(model_.hip_node[i], y) - foot_position(i, y);
   const double len = d.norm();
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
 }
@@ -58,12 +73,23 @@ const Eigen::VectorXd& RobotSystem::min_norm_solve(const Eigen::MatrixXd& A,
 }
 
 bool RobotSystem::feedback(const ode::Vec& y) const {
+  if (qs_states_ == 0) return stance_feedback(y);
+  // Quasi-static feet read the feedback at every foot's balance: memoised on the state (its
+  // inputs' setters drop the memo).
+  if (fb_memo_ && fb_y_.size() == y.size() && (fb_y_.array() == y.array()).all()) return fb_on_;
+  fb_on_ = stance_feedback(y);
+  fb_y_ = y;
+  fb_memo_ = true;
+  return fb_on_;
+}
+
+bool RobotSystem::stance_feedback(const ode::Vec& y) const {
   std::fill(fb_.begin(), fb_.end(), 0.0);
   if (!settings_.stance_feedback() || !settings_.actuators) return false;
   std::vector<size_t>& g = grounded_;
   g.clear();
   for (size_t i = 0; i < free_.size(); ++i) {
-    if (free_[i] && model_.foot[i] >= 0) g.push_back(i);
+    if (free_[i] && (model_.foot[i] >= 0 || qs_states_ > 0)) g.push_back(i);
   }
   if (g.size() < 3) return false;  // partial landings: no differential push
   const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
@@ -109,9 +135,10 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   // just landed is not lifted off again.
   for (size_t k = 0; k < g.size(); ++k) {
     const size_t i = g[k];
-    const double length =
-        (sys_.node_position(model_.hip_node[i], y) - y.segment<3>(6 * model_.foot[i])).norm();
-    const double rest = sys_.inputs().rest_length[static_cast<size_t>(model_.leg_spring[i])];
+    const double length = (sys_.node_position(model_.hip_node[i], y) - foot_position(i, y)).norm();
+    const double rest = qs_states_ > 0
+                            ? rest_[i]
+                            : sys_.inputs().rest_length[static_cast<size_t>(model_.leg_spring[i])];
     const double spring = settings_.leg_stiffness * std::max(0.0, rest - length);
     fb_[i] = std::max(f[static_cast<int>(k)], std::min(0.0, -spring - force_[i]));
   }
@@ -141,6 +168,7 @@ bool RobotSystem::extra_forces(const ode::Vec& y, ode::Vec& f) const {
       fi = std::clamp(fi, -settings_.actuator_max_force, settings_.actuator_max_force);
     }
     if (fi == 0.0) continue;
+    if (qs_states_ > 0 && !pinned_[i]) continue;  // a massless foot in the air: nothing to push
     const Vector3d F = fi * push_world(i, y, R);  // on the body at the hip
     const pr::NodeRef& h = model_.hip_node[i];
     if (rotation_ >= 0) {  // rigid body: on its CoM mass, and the torque after the masses'
@@ -169,11 +197,25 @@ void RobotSystem::add_extra(const ode::Vec& y, ode::Vec& dydt) const {
 void RobotSystem::rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
   sys_.rhs(t, y, dydt);
   add_extra(y, dydt);
+  if (qs_states_ > 0) add_feet(y, /*damped=*/true, /*rates=*/true, dydt);
 }
 
 void RobotSystem::conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const {
   sys_.conservative_rhs(t, y, dydt);
   add_extra(y, dydt);
+  if (qs_states_ > 0) add_feet(y, /*damped=*/false, /*rates=*/false, dydt);
+}
+
+void RobotSystem::momentum_mask(ode::Vec& mask) const {
+  sys_.momentum_mask(mask);
+  if (qs_states_ == 0) return;
+  mask.conservativeResize(dimension());
+  mask.tail(qs_states_).setZero();  // the feet's states are neither positions nor momenta
+}
+
+void RobotSystem::position_rate(const ode::Vec& y, ode::Vec& dydt) const {
+  sys_.position_rate(y, dydt);
+  if (qs_states_ > 0) dydt.tail(qs_states_).setZero();  // (relax() moves them)
 }
 
 void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const {
@@ -238,6 +280,12 @@ double RobotSystem::actuator_power(const ode::Vec& y) const {
 
 std::vector<Vector3d> RobotSystem::friction_forces(const ode::Vec& y) const {
   std::vector<Vector3d> out(model_.foot.size(), Vector3d::Zero());
+  if (qs_states_ > 0) {
+    feedback(y);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = ground_reaction(i, y, false);
+    for (Vector3d& f : out) f.z() = 0.0;
+    return out;
+  }
   if (model_.ground < 0) return out;
   for (size_t i = 0; i < model_.foot.size(); ++i) {
     const pr::NodeRef foot{pr::NodeRef::Kind::kMass, model_.foot[i]};
@@ -248,6 +296,12 @@ std::vector<Vector3d> RobotSystem::friction_forces(const ode::Vec& y) const {
 
 std::vector<double> RobotSystem::normal_forces(const ode::Vec& y) const {
   std::vector<double> out(model_.foot.size(), 0.0);
+  if (qs_states_ > 0) {
+    feedback(y);
+    for (size_t i = 0; i < out.size(); ++i)
+      out[i] = std::max(0.0, ground_reaction(i, y, false).z());
+    return out;
+  }
   if (model_.ground < 0) return out;
   for (size_t i = 0; i < model_.foot.size(); ++i) {
     const pr::NodeRef foot{pr::NodeRef::Kind::kMass, model_.foot[i]};

@@ -25,15 +25,17 @@ class RobotSystem final : public ode::MechanicalSystem {
   RobotSystem(const RobotModel& model, const pseudorigid::MechanismInputs& inputs,
               const scene::PseudoRigid& settings);
 
-  int dimension() const override { return sys_.dimension(); }
+  /// The mechanism's states, then (quasi-static feet) two per leg (foot_state()).
+  int dimension() const override { return sys_.dimension() + qs_states_; }
+  /// The mechanism's initial state, the feet's states zero (quasi-static feet start in the air
+  /// at their rest length).
+  ode::Vec initial_state() const;
   void rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
   bool has_jacobian() const override { return true; }
   void jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const override;
   bool autonomous() const override { return true; }
-  void momentum_mask(ode::Vec& mask) const override { sys_.momentum_mask(mask); }
-  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override {
-    sys_.position_rate(y, dydt);
-  }
+  void momentum_mask(ode::Vec& mask) const override;
+  void position_rate(const ode::Vec& y, ode::Vec& dydt) const override;
   double kinetic_energy(const ode::Vec& y) const override { return sys_.kinetic_energy(y); }
   int momentum_block() const override { return sys_.momentum_block(); }
   /// The mechanism's dissipation split. The actuator forces (the stance feedback's kd
@@ -43,9 +45,12 @@ class RobotSystem final : public ode::MechanicalSystem {
   bool has_drift() const override { return sys_.has_drift(); }
   void drift(double h, ode::Vec& y) const override { sys_.drift(h, y); }
   void conservative_rhs(double t, const ode::Vec& y, ode::Vec& dydt) const override;
-  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override {
-    return sys_.dissipate(t, h, y_ref, y);
-  }
+  double dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const override;
+  /// Quasi-static feet: each landed foot's ground position by the creep law, each foot in
+  /// the air relaxing to its rest length, backward Euler over h at fixed body
+  /// (robot_system_feet.cpp).
+  bool has_relaxation() const override { return qs_states_ > 0; }
+  double relax(double h, ode::Vec& y, bool* forces_moved) const override;
   void correct_step(const ode::Vec& y0, ode::Vec& y1) const override { sys_.correct_step(y0, y1); }
 
   /// Signed actuator force of each leg [N] (positive pushes the body away from
@@ -53,18 +58,25 @@ class RobotSystem final : public ode::MechanicalSystem {
   void set_actuators(const std::vector<double>& force, const std::vector<Eigen::Vector3d>& push) {
     force_ = force;
     push_ = push;
+    drop_memos();
   }
   const std::vector<double>& actuator_forces() const { return force_; }
   /// The tilt the stance attitude feedback holds: roll and pitch [rad] (small angles, about
   /// body x and y; 0 by default: level). The attitude integral action sets it per stride.
-  void set_stance_tilt(const Eigen::Vector2d& tilt) { stance_tilt_ = tilt; }
+  void set_stance_tilt(const Eigen::Vector2d& tilt) {
+    stance_tilt_ = tilt;
+    drop_memos();
+  }
   /// Each leg's total actuator force at y [N]: the set force plus, for a grounded
   /// leg, the stance attitude feedback (settings stance_kp, stance_kd).
   std::vector<double> actuator_forces(const ode::Vec& y) const;
   /// Frees leg i's hip (stance with rotating hips: the slide becomes a slot) or
   /// locks it. A free leg's actuator pushes along the current foot -> hip line (like
   /// the leg spring), not along `push`.
-  void set_free(size_t i, bool free) { free_[i] = free; }
+  void set_free(size_t i, bool free) {
+    free_[i] = free;
+    drop_memos();
+  }
   bool free(size_t i) const { return free_[i]; }
   /// Unit world direction of leg i's actuator push on the body (foot -> hip for a
   /// free leg, R push otherwise).
@@ -73,6 +85,52 @@ class RobotSystem final : public ode::MechanicalSystem {
   Eigen::Vector3d push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const;
 
   const pseudorigid::MechanismSystem& mechanism() const { return sys_; }
+  /// The stored energies at y: the mechanism's, and the quasi-static feet's leg springs (in
+  /// `leg`), slots and ground springs (in `contact`).
+  pseudorigid::Energies energies(const ode::Vec& y) const;
+
+  // Quasi-static feet (RobotModel::quasi_static_feet; robot_system_feet.cpp). A landed foot
+  // is pinned at its ground position (two integrated states: x, y [m]; its depth is the
+  // ground spring's in series with the leg and the slot); its hip is free in pitch (the slot,
+  // a plane through the hip holding the leg and the body x axis, normal slot_normal). In the
+  // air a foot sits on its leg's line (direction) at the rest length minus the leg's
+  // shortening (its first state [m], relaxing as a massless foot between spring, damper and
+  // actuator does), and transmits nothing.
+  bool quasi_static() const { return qs_states_ > 0; }
+  /// Index of leg i's two foot states in y.
+  int foot_state(size_t i) const { return sys_.dimension() + 2 * static_cast<int>(i); }
+  /// Leg i's foot position at y [m] (a foot mass's position, or the quasi-static foot's).
+  Eigen::Vector3d foot_position(size_t i, const ode::Vec& y) const;
+  /// Quasi-static legs' run-time inputs: rest length [m], leg direction hip -> foot and slot
+  /// normal (body frame, unit).
+  std::vector<double>& foot_rest() {
+    drop_memos();
+    return rest_;
+  }
+  const std::vector<double>& foot_rest() const { return rest_; }
+  std::vector<Eigen::Vector3d>& foot_direction() {
+    drop_memos();
+    return dir_;
+  }
+  const std::vector<Eigen::Vector3d>& foot_direction() const { return dir_; }
+  /// Quasi-static foot i is on the ground (its hip is free, free(i), from its landing until
+  /// RobotRun locks it after the foot has risen kFootLift, as a foot mass's is).
+  bool pinned(size_t i) const { return !pinned_.empty() && pinned_[i]; }
+  /// Quasi-static foot i lands at y: pinned where it is, its hip freed (the slot).
+  void land_foot(size_t i, ode::Vec& y);
+  /// Quasi-static foot i lifts off at y: its leg's direction and shortening as they are (its
+  /// hip stays free).
+  void lift_foot(size_t i, ode::Vec& y);
+  /// Quasi-static foot i's event value (it switches falling through 0): landed, the ground's
+  /// normal force on it [N] (lift-off); in the air, its height [m] above the ground, or at and
+  /// below it land_force_ minus the normal force the ground would take were it landed [N] (it
+  /// lands when it reaches the ground and the ground would press it).
+  double foot_event(size_t i, const ode::Vec& y) const;
+  /// The ground's reaction on quasi-static foot i at y (world; zero in the air) [N];
+  /// `feedback`: evaluate the stance feedback at y first (else the last evaluation's).
+  Eigen::Vector3d ground_reaction(size_t i, const ode::Vec& y, bool feedback = true) const;
+  /// The energy in quasi-static leg i's springs at y [J].
+  double foot_energy(size_t i, const ode::Vec& y) const;
   /// The adaptive steppers' error norm: the mechanism's body norm or the plain state norm
   /// (not mass-scaled, unlike a mechanism run's: pseudorigid::solver_norm).
   ode::ErrorNorm error_norm() const {
@@ -100,7 +158,43 @@ class RobotSystem final : public ode::MechanicalSystem {
   void add_extra(const ode::Vec& y, ode::Vec& dydt) const;
   /// Stance attitude feedback: fills fb_ with each leg's extra actuator force
   /// (zero for legs off the ground); false when it is off or no leg is grounded.
+  /// (Quasi-static feet: memoised, stance_feedback computes.)
   bool feedback(const ode::Vec& y) const;
+  bool stance_feedback(const ode::Vec& y) const;
+  /// Quasi-static feet: a landed leg's geometry and spring forces at its foot's ground
+  /// position s (the depth solved in series), its hip and com at y and slot normal n (world).
+  struct Stance {
+    Eigen::Vector3d foot, d;       ///< foot [m]; unit foot -> hip
+    double l = 0.0, spring = 0.0;  ///< length [m]; spring force k (l0 - l) [N], + pushes
+    double slot = 0.0;             ///< slot spring force k_s e along n (on the body) [N]
+    double depth = 0.0;            ///< ground spring compression [m]
+    double energy = 0.0;           ///< springs' energy [J]
+  };
+  Stance stance(size_t i, const Eigen::Vector2d& s, const Eigen::Vector3d& hip,
+                const Eigen::Vector3d& n) const;
+  /// stance() of pinned leg i at its own ground position in y, memoised for every pinned leg
+  /// on the body's position and attitude and the feet's states (valid until the next call).
+  const Stance& stance_at(size_t i, const ode::Vec& y) const;
+  void drop_memos() const { fb_memo_ = st_memo_ = false; }
+  /// World slot normal and hip of leg i at y.
+  Eigen::Vector3d slot_world(size_t i, const ode::Vec& y) const;
+  /// Adds the landed quasi-static legs' springs and slots (and, with `damped`, their dampers)
+  /// to the body's momentum rates; writes the feet's state rates (`rates`: the creep and
+  /// relaxation; otherwise 0).
+  void add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec& dydt) const;
+  /// Leg i's actuator force as extra_forces applies it (after feedback(y)) [N].
+  double applied_actuator(size_t i) const;
+  /// A landed leg's ground reaction (world) [N] at s with actuator a [N] and hip velocity vh.
+  Eigen::Vector3d reaction(size_t i, const Stance& st, const Eigen::Vector3d& n,
+                           const Eigen::Vector3d& vh, double a) const;
+  /// relax(): landed leg i's ground position after h [s] (backward Euler of the creep law
+  /// as the minimum of the springs' energy plus the friction's dissipation potential);
+  /// *released: the springs' energy it released [J].
+  Eigen::Vector2d creep(size_t i, double h, const Eigen::Vector2d& s0, const Eigen::Vector3d& hip,
+                        const Eigen::Vector3d& n, const Eigen::Vector3d& vh, double a,
+                        double* released) const;
+  /// Impulse j at world point p on the rigid body's momenta in y.
+  void push_body(const Eigen::Vector3d& p, const Eigen::Vector3d& j, ode::Vec& y) const;
   /// The minimum-norm solution of A f = b (A: 3 x legs) into f_.
   const Eigen::VectorXd& min_norm_solve(const Eigen::MatrixXd& A, const Eigen::Vector3d& b) const;
 
@@ -111,12 +205,29 @@ class RobotSystem final : public ode::MechanicalSystem {
   std::vector<Eigen::Vector3d> push_;
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
-  int rotation_ = -1;  ///< rigid body: its rotation states in y
+  int rotation_ = -1;                        ///< rigid body: its rotation states in y
+  int qs_states_ = 0;                        ///< quasi-static feet: 2 per leg, else 0
+  std::vector<double> rest_;                 ///< quasi-static legs' rest lengths [m]
+  std::vector<bool> pinned_;                 ///< quasi-static feet on the ground
+  std::vector<Eigen::Vector3d> dir_, slot_;  ///< ... directions and slot normals (body)
+  // (quasi-static feet) the body's friction, slip speed, stiffnesses and damping.
+  double mu_ = 0.0, v_slip_ = 0.0, k_leg_ = 0.0, k_slot_ = 0.0, k_ground_ = 0.0, c_leg_ = 0.0;
+  /// (quasi-static feet) the normal force a foot at the ground in the air must be pressed by
+  /// to land (foot_event): 1e-3 of the weight per leg [N].
+  double land_force_ = 0.0;
   // Scratch, written before it is read within one call (no state carried between calls): the
   // actuator forces and their differences, the feedback's leg forces, grounded legs,
   // directions, system and solution, and the Jacobian's perturbed state and triplets.
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
+  // (quasi-static feet) feedback()'s memo: the state of fb_ and its result; dropped by the
+  // setters of what else it reads.
+  mutable ode::Vec fb_y_;
+  mutable bool fb_memo_ = false, fb_on_ = false;
+  // (quasi-static feet) stance_at()'s memo: its key and the pinned legs' stances.
+  mutable Eigen::VectorXd st_key_;
+  mutable std::vector<Stance> st_;
+  mutable bool st_memo_ = false;
   Eigen::Vector2d stance_tilt_ = Eigen::Vector2d::Zero();
   mutable std::vector<size_t> grounded_;  ///< feedback(): scratch (legs on the ground)
   mutable std::vector<Eigen::Vector3d> u_;

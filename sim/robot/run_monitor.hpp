@@ -58,7 +58,7 @@ struct RunMonitor {
   /// The energy balance at a sample time t with the flows up to t: its departure from the
   /// start enters the drift monitor (and the blow-up check); with `record` the sample is kept.
   void sample(double t, const ode::Vec& y, double dissipated_t, double work_t) {
-    const pr::Energies e = msys.energies(y);
+    const pr::Energies e = sys.energies(y);
     const double drift =
         std::abs(e.total() + dissipated_t - work_t - out.monitors.hip_work - balance0);
     sampled_drift = std::max(sampled_drift, std::isfinite(drift) ? drift : 1e300);
@@ -88,7 +88,8 @@ struct RunMonitor {
     }
     if (model.spring_legs) {
       rs.normal_force = sys.normal_forces(y);
-      for (int f : model.foot) rs.foot_z.push_back(y[6 * f + 2]);
+      for (size_t i = 0; i < model.foot.size(); ++i)
+        rs.foot_z.push_back(sys.foot_position(i, y).z());
     }
     out.run.trajectory.push_back(smp);
     out.samples.push_back(std::move(rs));
@@ -100,6 +101,10 @@ struct RunMonitor {
     out.monitors.max_strain = std::max(out.monitors.max_strain, m.max_strain);
     out.monitors.max_penetration = std::max(out.monitors.max_penetration, m.max_penetration);
     if (!model.spring_legs) return;
+    if (model.quasi_static_feet) {
+      monitor_feet(y);
+      return;
+    }
     for (size_t i = 0; i < model.foot.size(); ++i) {
       const int f = model.foot[i];
       const Eigen::Vector2d xy = y.segment<2>(6 * f);
@@ -117,6 +122,32 @@ struct RunMonitor {
         }
       } else {
         in_contact[i] = false;
+      }
+    }
+  }
+  /// monitor() of quasi-static feet: a landed foot's slip from where it landed and its
+  /// friction ratio |F_t| / N.
+  void monitor_feet(const ode::Vec& y) {
+    std::vector<Vector3d> ft;
+    std::vector<double> nf;
+    for (size_t i = 0; i < model.foot.size(); ++i) {
+      if (!sys.pinned(i)) {
+        in_contact[i] = false;
+        continue;
+      }
+      const Eigen::Vector2d xy = y.segment<2>(sys.foot_state(i));
+      if (!in_contact[i]) contact_start[i] = xy;
+      in_contact[i] = true;
+      const double slip = (xy - contact_start[i]).norm();
+      stride_slip = std::max(stride_slip, slip);
+      out.monitors.max_slip = std::max(out.monitors.max_slip, slip);
+      if (ft.empty()) {
+        ft = sys.friction_forces(y);
+        nf = sys.normal_forces(y);
+      }
+      if (nf[i] > 0.0) {
+        out.monitors.max_friction_ratio =
+            std::max(out.monitors.max_friction_ratio, ft[i].norm() / nf[i]);
       }
     }
   }

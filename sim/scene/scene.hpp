@@ -145,8 +145,14 @@ struct PseudoRigid {
   double strain_budget = 1e-4;       ///< allowed internal strain for "auto" [-]
   double penetration_budget = 1e-4;  ///< allowed penetration for "auto" [m]
   double foot_mass = 0.01;           ///< [kg]
-  double leg_stiffness = 100.0;      ///< leg spring [N/m]
-  double leg_damping = 0.0;          ///< leg damper [N s/m]
+  /// Feet (spring legs): point masses of foot_mass on the leg slides, or quasi-static
+  /// (massless): an algebraic point at the leg's rest length in the air and, on the ground,
+  /// held where force balance puts it, its ground position integrated by the regularised
+  /// friction law's creep (sim/robot/robot_system_feet.cpp; rigid body only).
+  enum class Feet { kMass, kQuasiStatic };
+  Feet feet = Feet::kMass;
+  double leg_stiffness = 100.0;  ///< leg spring [N/m]
+  double leg_damping = 0.0;      ///< leg damper [N s/m]
   /// Leg actuator force limit [N]; 0 = unlimited. A saturated pulse delivers less
   /// than requested unless impulse_feedback keeps the actuator on.
   double actuator_max_force = 0.0;

@@ -1,0 +1,342 @@
+// RobotSystem's quasi-static (massless) feet (RobotModel::quasi_static_feet).
+//
+// A massless foot transmits what holds it in balance. In the air nothing holds it: it sits on
+// its leg's line at the rest length minus the leg's shortening q, which relaxes as a foot
+// between the leg spring, its damper and the actuator does (k q - c dl/dt + a = 0, so
+// dq/dt = -(k q + a) / c, towards the rest length plus a / k), and the body feels nothing of
+// the leg (the actuator acts on nothing). Its velocity is continuous at lift-off (the ground
+// force is zero there), so a lifted foot does not sink into the ground. On the ground the
+// foot is pinned at its ground position s (two integrated states); the leg's spring (the foot
+// pressed into the ground spring in series: the depth that balances them, one Newton step from the
+// surface) pushes the hip along the foot -> hip line, the slot (a bilateral plane through the hip
+// holding the leg and the body x axis, stiffness internal_stiffness) pushes the body at the foot
+// across it, and the ground takes their sum plus the leg's damper and actuator. Its tangential part
+// F_t is held by friction: the regularised Coulomb law F_t = -mu N v / sqrt(|v|^2 + v_s^2)
+// read backwards is the foot's creep, v = v_s r / sqrt(1 - r^2) along the push, r = |F_t| /
+// (mu N). Method verlet advances s in MechanicalSystem::relax at the step's start, by
+// backward Euler as the minimum of the springs' energy plus the friction's dissipation
+// potential mu N (sqrt(|v|^2 + v_s^2) - v_s) h over the step, so both kicks read the forces
+// after the slide; the energy the slide releases is booked as dissipated. The leg dampers act
+// in the dissipation split on the body (the foot held), the actuators in extra_forces.
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "sim/pseudorigid/rigid_body.hpp"
+#include "sim/robot/robot_system.hpp"
+
+namespace pronk::robot {
+
+namespace pr = pseudorigid;
+using Eigen::Matrix2d;
+using Eigen::Matrix3d;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+namespace {
+constexpr double kMaxSlide = 0.02;  ///< largest slide of a foot in one relaxation [m]
+constexpr int kMaxIterations = 30;  ///< Newton iterations of one foot's creep
+}  // namespace
+
+ode::Vec RobotSystem::initial_state() const {
+  const ode::Vec y0 = model_.mechanism.initial_state();
+  if (qs_states_ == 0) return y0;
+  ode::Vec y = ode::Vec::Zero(dimension());
+  y.head(y0.size()) = y0;
+  return y;
+}
+
+Vector3d RobotSystem::slot_world(size_t i, const ode::Vec& y) const {
+  return sys_.frames(y)[model_.body].rotation * slot_[i];
+}
+
+Vector3d RobotSystem::foot_position(size_t i, const ode::Vec& y) const {
+  if (model_.foot[i] >= 0) return y.segment<3>(6 * model_.foot[i]);
+  const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+  if (pinned_[i]) return stance_at(i, y).foot;
+  const Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+  return hip + (rest_[i] - y[foot_state(i)]) * (R * dir_[i]);
+}
+
+RobotSystem::Stance RobotSystem::stance(size_t i, const Vector2d& s, const Vector3d& hip,
+                                        const Vector3d& n) const {
+  Stance st;
+  double e = 0.0;
+  auto at = [&](double z) {
+    st.foot = Vector3d(s.x(), s.y(), z);
+    const Vector3d L = hip - st.foot;
+    st.l = L.norm();
+    st.d = st.l > 1e-12 ? Vector3d(L / st.l) : Vector3d::UnitZ();
+    st.spring = k_leg_ * (rest_[i] - st.l);
+    e = (st.foot - hip).dot(n);
+    st.slot = k_slot_ * e;
+  };
+  at(0.0);
+  // The ground spring in series: the depth at which it carries what the leg and the slot
+  // press into it (linearised about the surface).
+  const double pressed = st.spring * st.d.z() + st.slot * n.z();
+  if (pressed > 0.0 && k_ground_ > 0.0) {
+    st.depth = pressed / (k_ground_ + k_leg_ * st.d.z() * st.d.z() + k_slot_ * n.z() * n.z());
+    at(-st.depth);
+  }
+  const double x = rest_[i] - st.l;
+  st.energy = 0.5 * (k_leg_ * x * x + k_slot_ * e * e + k_ground_ * st.depth * st.depth);
+  return st;
+}
+
+const RobotSystem::Stance& RobotSystem::stance_at(size_t i, const ode::Vec& y) const {
+  // Keyed on what a stance reads of y: the body's position and attitude and the feet's states.
+  const int c = 6 * model_.mechanism.bodies[model_.body].first_mass;
+  const int n = 7 + qs_states_;
+  bool hit = st_memo_ && st_key_.size() == n;
+  for (int j = 0; hit && j < 3; ++j) hit = st_key_[j] == y[c + j];
+  for (int j = 0; hit && j < 4; ++j) hit = st_key_[3 + j] == y[rotation_ + j];
+  for (int j = 0; hit && j < qs_states_; ++j) hit = st_key_[7 + j] == y[foot_state(0) + j];
+  if (!hit) {
+    st_key_.resize(n);
+    st_key_.head<3>() = y.segment<3>(c);
+    st_key_.segment<4>(3) = y.segment<4>(rotation_);
+    st_key_.tail(qs_states_) = y.segment(foot_state(0), qs_states_);
+    st_.resize(pinned_.size());
+    for (size_t k = 0; k < pinned_.size(); ++k) {
+      if (!pinned_[k]) continue;
+      st_[k] = stance(k, y.segment<2>(foot_state(k)), sys_.node_position(model_.hip_node[k], y),
+                      slot_world(k, y));
+    }
+    st_memo_ = true;
+  }
+  return st_[i];
+}
+
+double RobotSystem::applied_actuator(size_t i) const {
+  double f = settings_.actuator_gain * (force_[i] + fb_[i]);
+  if (settings_.actuator_max_force > 0.0) {
+    f = std::clamp(f, -settings_.actuator_max_force, settings_.actuator_max_force);
+  }
+  return f;
+}
+
+Vector3d RobotSystem::reaction(size_t /*i*/, const Stance& st, const Vector3d& n,
+                               const Vector3d& vh, double a) const {
+  const double T = st.spring - c_leg_ * st.d.dot(vh) + a;
+  return T * st.d + st.slot * n;
+}
+
+void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec& dydt) const {
+  const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
+  const Matrix3d R = fr.rotation;
+  const Vector3d com = fr.com;
+  const int p = 6 * model_.mechanism.bodies[model_.body].first_mass + 3;
+  if (rates) feedback(y);
+  for (size_t i = 0; i < pinned_.size(); ++i) {
+    const int k = foot_state(i);
+    dydt[k] = dydt[k + 1] = 0.0;
+    if (!pinned_[i]) {  // in the air: the leg's shortening relaxes
+      if (rates && c_leg_ > 0.0) dydt[k] = -(k_leg_ * y[k] + applied_actuator(i)) / c_leg_;
+      continue;
+    }
+    const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+    const Vector3d n = R * slot_[i];
+    const Stance& st = stance_at(i, y);
+    Vector3d vh = Vector3d::Zero();
+    if (damped || rates) vh = sys_.node_velocity(model_.hip_node[i], y);
+    const double T = st.spring - (damped ? c_leg_ * st.d.dot(vh) : 0.0);
+    const Vector3d f_leg = T * st.d, f_slot = st.slot * n;
+    dydt.segment<3>(p) += f_leg + f_slot;
+    dydt.segment<3>(rotation_ + 4) += (hip - com).cross(f_leg) + (st.foot - com).cross(f_slot);
+    if (!rates) continue;
+    const Vector3d g = reaction(i, st, n, vh, applied_actuator(i));
+    const double grip = std::max(mu_, 1e-3) * g.z();
+    if (!(grip > 0.0)) continue;
+    const Vector2d push = -g.head<2>();
+    const double r = std::min(push.norm() / grip, 1.0 - 1e-9);
+    dydt.segment<2>(k) = v_slip_ * push / (grip * std::sqrt(1.0 - r * r));
+  }
+}
+
+Vector2d RobotSystem::creep(size_t i, double h, const Vector2d& s0, const Vector3d& hip,
+                            const Vector3d& n, const Vector3d& vh, double a,
+                            double* released) const {
+  const Stance st0 = stance(i, s0, hip, n);
+  *released = 0.0;
+  const double normal = reaction(i, st0, n, vh, a).z();
+  if (!(normal > 0.0)) return s0;  // lifting off: the event takes it
+  const double grip = mu_ * normal;
+  const double hv = h * v_slip_;
+  // Phi(D) = W(s0 + D) + grip (sqrt(|D|^2 + (h v_s)^2) - h v_s), W the springs' energy with
+  // the damper and actuator as constant forces along the leg (grad W = the ground's
+  // tangential reaction g_t).
+  struct Point {
+    Vector2d D, grad;
+    double phi;
+    Stance st;
+  };
+  auto point = [&](const Vector2d& D, const Stance& st) {
+    Point q;
+    q.D = D;
+    q.st = st;
+    const double axial = a - c_leg_ * q.st.d.dot(vh);
+    const double rho = std::sqrt(D.squaredNorm() + hv * hv);
+    q.phi = q.st.energy - axial * q.st.l + grip * (rho - hv);
+    q.grad = reaction(i, q.st, n, vh, a).head<2>() + grip * D / rho;
+    return q;
+  };
+  auto eval = [&](const Vector2d& D) { return point(D, stance(i, s0 + D, hip, n)); };
+  Point q = point(Vector2d::Zero(), st0);
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const double rho = std::sqrt(q.D.squaredNorm() + hv * hv);
+    const Vector2d dt = q.st.d.head<2>(), nt = n.head<2>();
+    Matrix2d H = k_leg_ * dt * dt.transpose() + k_slot_ * nt * nt.transpose();
+    H += (grip / rho) * (Matrix2d::Identity() - q.D * q.D.transpose() / (rho * rho));
+    H += 1e-9 * (k_leg_ + k_slot_ + grip / hv) * Matrix2d::Identity();
+    Vector2d step = -H.ldlt().solve(q.grad);
+    if (!step.allFinite()) break;
+    // (converged: a step below the resolution of the ground position)
+    if (step.norm() <= 1e-13 + 1e-10 * q.D.norm()) break;
+    if (step.norm() > kMaxSlide) step *= kMaxSlide / step.norm();
+    double t = 1.0;
+    Point next = eval(q.D + step);
+    while (!(next.phi <= q.phi + 1e-4 * t * q.grad.dot(step)) && t > 1e-6) {
+      t *= 0.5;
+      next = eval(q.D + t * step);
+    }
+    if (!(next.phi <= q.phi)) break;  // no descent left (round-off): q is the minimum
+    q = next;
+    if (q.D.norm() >= kMaxSlide) break;
+  }
+  *released = st0.energy - q.st.energy;
+  return s0 + q.D;
+}
+
+double RobotSystem::relax(double h, ode::Vec& y, bool* forces_moved) const {
+  double released = 0.0;
+  *forces_moved = false;  // (a foot in the air pushes nothing)
+  feedback(y);
+  for (size_t i = 0; i < pinned_.size(); ++i) {
+    const int k = foot_state(i);
+    if (!pinned_[i]) {  // in the air: the shortening relaxes exactly, to -a / k
+      const double q0 = y[k], q_end = -applied_actuator(i) / k_leg_;
+      const double q1 =
+          c_leg_ > 0.0 ? q_end + (q0 - q_end) * std::exp(-h * k_leg_ / c_leg_) : q_end;
+      released += 0.5 * k_leg_ * (q0 * q0 - q1 * q1);
+      y[k] = q1;
+      continue;
+    }
+    const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+    const Vector3d n = slot_world(i, y);
+    const Vector3d vh = sys_.node_velocity(model_.hip_node[i], y);
+    const Vector2d s0 = y.segment<2>(k);
+    double lost = 0.0;
+    const Vector2d s1 = creep(i, h, s0, hip, n, vh, applied_actuator(i), &lost);
+    released += lost;
+    y.segment<2>(k) = s1;
+    *forces_moved = *forces_moved || s1 != s0;
+  }
+  return released;
+}
+
+void RobotSystem::push_body(const Vector3d& p, const Vector3d& j, ode::Vec& y) const {
+  const int c = model_.mechanism.bodies[model_.body].first_mass;
+  y.segment<3>(6 * c + 3) += j;
+  y.segment<3>(rotation_ + 4) += (p - y.segment<3>(6 * c)).cross(j);
+}
+
+double RobotSystem::dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const {
+  const double inner = sys_.dissipate(t, h, y_ref, y);
+  if (qs_states_ == 0 || !(c_leg_ > 0.0)) return inner;
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  const int c = 6 * body.first_mass;
+  const Vector3d p0 = y.segment<3>(c + 3), L0 = y.segment<3>(rotation_ + 4);
+  const Matrix3d R = sys_.frames(y)[model_.body].rotation;
+  const Matrix3d iw = pr::rigid_inverse_inertia(body, R);
+  bool any = false;
+  // Each landed leg's damper between the hip and the held foot, backward Euler at fixed
+  // positions: the extension rate u falls to u / (1 + w c h), w the hip's inverse effective
+  // mass along the leg.
+  for (size_t i = 0; i < pinned_.size(); ++i) {
+    if (!pinned_[i]) continue;
+    const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+    const Stance st = stance_at(i, y);
+    const Vector3d rd = (hip - y.segment<3>(c)).cross(st.d);
+    const double w = 1.0 / body.mass + rd.dot(iw * rd);
+    const double u = st.d.dot(sys_.node_velocity(model_.hip_node[i], y));
+    push_body(hip, (-c_leg_ * h * u / (1.0 + w * c_leg_ * h)) * st.d, y);
+    any = true;
+  }
+  if (!any) return inner;
+  // The booking of the split (MechanismSystem::dissipate): -dP . (v_ref + dP / 2M) and the
+  // rotation's -dL . I_w^-1 (L_ref + dL / 2).
+  const Vector3d dp = y.segment<3>(c + 3) - p0, dL = y.segment<3>(rotation_ + 4) - L0;
+  return inner - dp.dot(y_ref.segment<3>(c + 3) + 0.5 * dp) / body.mass -
+         dL.dot(iw * (y_ref.segment<3>(rotation_ + 4) + 0.5 * dL));
+}
+
+pr::Energies RobotSystem::energies(const ode::Vec& y) const {
+  pr::Energies e = sys_.energies(y);
+  for (int i = 0; i < qs_states_ / 2; ++i) e.leg += foot_energy(static_cast<size_t>(i), y);
+  return e;
+}
+
+double RobotSystem::foot_energy(size_t i, const ode::Vec& y) const {
+  const int k = foot_state(i);
+  if (!pinned_[i]) return 0.5 * k_leg_ * y[k] * y[k];
+  return stance_at(i, y).energy;
+}
+
+Vector3d RobotSystem::ground_reaction(size_t i, const ode::Vec& y, bool fb) const {
+  if (!pinned_[i]) return Vector3d::Zero();
+  if (fb) feedback(y);
+  const Vector3d n = slot_world(i, y);
+  const Stance& st = stance_at(i, y);
+  return reaction(i, st, n, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i));
+}
+
+namespace {
+/// The slot normal (body frame) of a leg along body-frame dir: dir x the body x axis; zero
+/// for a leg along that axis (no slot).
+Vector3d slot_of(const Vector3d& dir) {
+  const Vector3d nrm = dir.cross(Vector3d::UnitX());
+  return nrm.norm() > 1e-6 ? Vector3d(nrm.normalized()) : Vector3d::Zero();
+}
+}  // namespace
+
+double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
+  if (pinned_[i]) return ground_reaction(i, y).z();
+  const Vector3d f = foot_position(i, y);
+  if (f.z() > 0.0) return f.z();
+  // At or below the ground in the air: it lands once the ground would press it (the leg
+  // shortens faster than its spring and damper extend it) by land_force_: a foot that lifted
+  // at zero force does not land again at once (the zero-force boundary is both states'; with
+  // no band between them a foot resting unloaded switches at every step).
+  feedback(y);
+  const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+  const Vector3d n = sys_.frames(y)[model_.body].rotation * slot_of(dir_[i]);
+  const Stance st = stance(i, f.head<2>(), hip, n);
+  const double pressed =
+      reaction(i, st, n, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i)).z();
+  return land_force_ - pressed;
+}
+
+void RobotSystem::land_foot(size_t i, ode::Vec& y) {
+  const Vector3d f = foot_position(i, y);
+  y.segment<2>(foot_state(i)) = f.head<2>();
+  slot_[i] = slot_of(dir_[i]);
+  pinned_[i] = free_[i] = true;
+  drop_memos();
+}
+
+void RobotSystem::lift_foot(size_t i, ode::Vec& y) {
+  // (on the surface: the ground spring lets go as the foot leaves it)
+  const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
+  const Vector2d s = y.segment<2>(foot_state(i));
+  const Vector3d L = Vector3d(s.x(), s.y(), 0.0) - hip;
+  const double l = L.norm();
+  if (l > 1e-9) dir_[i] = sys_.frames(y)[model_.body].rotation.transpose() * (L / l);
+  y[foot_state(i)] = rest_[i] - l;
+  y[foot_state(i) + 1] = 0.0;
+  pinned_[i] = false;  // (its hip stays free until the foot has risen: RobotRun)
+  drop_memos();
+}
+
+}  // namespace pronk::robot
