@@ -58,6 +58,12 @@ std::vector<Setting> settings() {
        {R"(/pseudo_rigid/body="rigid")", R"(/pseudo_rigid/feet="quasi_static")"},
        {},
        {},
+       {}},
+      {"pronk_rigid_quasi_static_feet_verlet_6e-4",
+       {R"(/pseudo_rigid/body="rigid")", R"(/pseudo_rigid/feet="quasi_static")",
+        R"(/pseudo_rigid/solver={"method":"verlet","h_fixed":6e-4})"},
+       {},
+       {},
        {}}};
   for (double dt : {2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4}) {
     char name[48];

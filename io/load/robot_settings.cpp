@@ -140,13 +140,6 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
   p.feet = r.choice_or("feet", "mass", {"mass", "quasi_static"}) == "quasi_static"
                ? scene::PseudoRigid::Feet::kQuasiStatic
                : scene::PseudoRigid::Feet::kMass;
-  if (p.feet == scene::PseudoRigid::Feet::kQuasiStatic &&
-      p.body != scene::PseudoRigid::BodyKind::kRigid &&
-      p.legs == scene::PseudoRigid::Legs::kSpring) {
-    throw r.error("feet",
-                  "\"mass\" with \"body\": \"four_masses\" (quasi-static feet act on a rigid body)",
-                  "\"quasi_static\"");
-  }
   given->foot_mass = r.has("foot_mass");
   p.foot_mass = r.number_or("foot_mass", p.foot_mass, 1e-6, 1e3);
   parse_leg_stiffness(r, node, &p, given);

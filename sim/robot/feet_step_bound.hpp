@@ -12,7 +12,9 @@
 // K v = omega^2 M v. More feet only stiffen K (its largest eigenvalue is monotone), so all feet
 // down bounds every stance. The geometry turns with the placement: the bound is the largest
 // omega over the legs' rest lengths 0.75 .. 1.25 of nominal (level_feet's range) and the legs
-// turned fore-aft and sideways by up to max_leg_angle (all legs alike).
+// turned fore-aft and sideways by up to max_leg_angle (all legs alike). On the four-mass body
+// the same springs load the masses (the hip's barycentric weights; the slot's turning normal
+// through the fitted attitude's derivative) beside the six body springs: a 12 x 12 problem.
 #pragma once
 
 #include <string>

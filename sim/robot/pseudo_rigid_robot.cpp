@@ -198,8 +198,10 @@ RobotModel build_robot(const scene::Scene& s) {
       s.legs.body_only ? std::vector<Vector3d>{Vector3d::Zero()} : s.legs.hips;
   const bool dummy = p.hips == scene::PseudoRigid::Hips::kDummy;
   if (dummy && rigid) throw std::invalid_argument("a rigid body has no dummy hip masses");
-  if (r.quasi_static_feet && !rigid) {
-    throw std::invalid_argument("quasi-static feet act on a rigid body (\"body\": \"rigid\")");
+  if (r.quasi_static_feet && dummy) {
+    throw std::invalid_argument(
+        "quasi-static feet need hips on the body (\"hips\": \"ghost_points\"), not dummy hip "
+        "masses");
   }
   if (r.quasi_static_feet && !p.hip_rotation) {
     // (their stance is the free hip's slot; a locked hip's line is not implemented)

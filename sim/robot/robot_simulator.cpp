@@ -66,7 +66,7 @@ std::optional<reduced::LimitBreach> feet_step_breach(const scene::Scene& scene,
   b.expected =
       "at most the quasi-static feet's stability bound 2/omega = " + run::fmt(2.0 / omega) +
       " s (omega = " + run::fmt(omega) +
-      " rad/s: the rigid body on its landed feet's slot and leg springs)";
+      " rad/s: the body on its landed feet's slot and leg springs)";
   return b;
 }
 

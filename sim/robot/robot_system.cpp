@@ -219,7 +219,9 @@ void RobotSystem::position_rate(const ode::Vec& y, ode::Vec& dydt) const {
 }
 
 void RobotSystem::jacobian(double t, const ode::Vec& y, Eigen::SparseMatrix<double>& J) const {
-  if (rotation_ >= 0) {  // rigid body: forward differences of the whole RHS, actuators included
+  if (rotation_ >= 0 || qs_states_ > 0) {
+    // rigid body, or quasi-static feet: forward differences of the whole RHS, actuators and
+    // feet included
     ode::difference_jacobian(*this, t, y, J);
     return;
   }

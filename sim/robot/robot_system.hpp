@@ -193,8 +193,26 @@ class RobotSystem final : public ode::MechanicalSystem {
   Eigen::Vector2d creep(size_t i, double h, const Eigen::Vector2d& s0, const Eigen::Vector3d& hip,
                         const Eigen::Vector3d& n, const Eigen::Vector3d& vh, double a,
                         double* released) const;
-  /// Impulse j at world point p on the rigid body's momenta in y.
-  void push_body(const Eigen::Vector3d& p, const Eigen::Vector3d& j, ode::Vec& y) const;
+  /// (quasi-static feet) A force f [N] at leg i's hip on the body, into the momentum rates of
+  /// dydt (rigid body: its CoM and angular momentum; four masses: by the hip's barycentric
+  /// weights, the gradient of an energy of the hip's position).
+  void load_hip(size_t i, const Eigen::Vector3d& f, const ode::Vec& y, ode::Vec& dydt) const;
+  /// (quasi-static feet) A torque tau [N m] (world) on the body, into dydt (four masses:
+  /// through the fitted attitude's derivative with respect to the masses, the gradient of an
+  /// energy of the body's attitude).
+  void load_torque(const Eigen::Vector3d& tau, const ode::Vec& y, ode::Vec& dydt) const;
+  /// The body's inverse effective mass at leg i's hip along unit d [1/kg].
+  double hip_inverse_mass(size_t i, const ode::Vec& y, const Eigen::Vector3d& d) const;
+  /// Impulse j [N s] at leg i's hip on the body's momenta in y.
+  void push_hip(size_t i, const Eigen::Vector3d& j, ode::Vec& y) const;
+  /// The kinetic energy change booked by the dissipation split for momenta moved from y0 to
+  /// y, against the reference momenta of y_ref [J] (MechanismSystem::dissipate's booking:
+  /// -dP . (v_ref + dP / 2M) per mass, and the rigid body's rotation's).
+  double booked_body(const ode::Vec& y_ref, const ode::Vec& y0, const ode::Vec& y) const;
+  /// (quasi-static feet) the position states the stances read: the rigid body's CoM and
+  /// attitude (7); otherwise every mass's position (the four and any dummy hip masses).
+  int body_key_size() const { return rotation_ >= 0 ? 7 : 3 * static_cast<int>(inv_mass_.size()); }
+  double body_key(const ode::Vec& y, int j) const;
   /// The minimum-norm solution of A f = b (A: 3 x legs) into f_.
   const Eigen::VectorXd& min_norm_solve(const Eigen::MatrixXd& A, const Eigen::Vector3d& b) const;
 
@@ -233,7 +251,7 @@ class RobotSystem final : public ode::MechanicalSystem {
   mutable std::vector<Eigen::Vector3d> u_;
   mutable Eigen::MatrixXd A_;
   mutable Eigen::VectorXd f_;
-  mutable ode::Vec yp_;
+  mutable ode::Vec yp_, y_damp_;
   mutable std::vector<Eigen::Triplet<double>> triplets_;
 };
 

@@ -23,6 +23,7 @@
 
 #include <Eigen/Dense>
 
+#include "sim/pseudorigid/attitude.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
 #include "sim/robot/robot_system.hpp"
 
@@ -85,18 +86,25 @@ RobotSystem::Stance RobotSystem::stance(size_t i, const Vector2d& s, const Vecto
   return st;
 }
 
+double RobotSystem::body_key(const ode::Vec& y, int j) const {
+  if (rotation_ >= 0) {
+    const int c = 6 * model_.mechanism.bodies[model_.body].first_mass;
+    return j < 3 ? y[c + j] : y[rotation_ + j - 3];
+  }
+  return y[6 * (j / 3) + j % 3];
+}
+
 const RobotSystem::Stance& RobotSystem::stance_at(size_t i, const ode::Vec& y) const {
-  // Keyed on what a stance reads of y: the body's position and attitude and the feet's states.
-  const int c = 6 * model_.mechanism.bodies[model_.body].first_mass;
-  const int n = 7 + qs_states_;
+  // Keyed on what a stance reads of y: the body's positions (and attitude) and the feet's
+  // states.
+  const int nb = body_key_size();
+  const int n = nb + qs_states_;
   bool hit = st_memo_ && st_key_.size() == n;
-  for (int j = 0; hit && j < 3; ++j) hit = st_key_[j] == y[c + j];
-  for (int j = 0; hit && j < 4; ++j) hit = st_key_[3 + j] == y[rotation_ + j];
-  for (int j = 0; hit && j < qs_states_; ++j) hit = st_key_[7 + j] == y[foot_state(0) + j];
+  for (int j = 0; hit && j < nb; ++j) hit = st_key_[j] == body_key(y, j);
+  for (int j = 0; hit && j < qs_states_; ++j) hit = st_key_[nb + j] == y[foot_state(0) + j];
   if (!hit) {
     st_key_.resize(n);
-    st_key_.head<3>() = y.segment<3>(c);
-    st_key_.segment<4>(3) = y.segment<4>(rotation_);
+    for (int j = 0; j < nb; ++j) st_key_[j] = body_key(y, j);
     st_key_.tail(qs_states_) = y.segment(foot_state(0), qs_states_);
     st_.resize(pinned_.size());
     for (size_t k = 0; k < pinned_.size(); ++k) {
@@ -124,11 +132,9 @@ Vector3d RobotSystem::reaction(size_t /*i*/, const Stance& st, const Vector3d& n
 }
 
 void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec& dydt) const {
-  const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
-  const Matrix3d R = fr.rotation;
-  const Vector3d com = fr.com;
-  const int p = 6 * model_.mechanism.bodies[model_.body].first_mass + 3;
   if (rates) feedback(y);
+  Vector3d tau = Vector3d::Zero();
+  bool loaded = false;
   for (size_t i = 0; i < pinned_.size(); ++i) {
     const int k = foot_state(i);
     dydt[k] = dydt[k + 1] = 0.0;
@@ -137,14 +143,16 @@ void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec&
       continue;
     }
     const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-    const Vector3d n = R * slot_[i];
+    const Vector3d n = slot_world(i, y);
     const Stance& st = stance_at(i, y);
     Vector3d vh = Vector3d::Zero();
     if (damped || rates) vh = sys_.node_velocity(model_.hip_node[i], y);
     const double T = st.spring - (damped ? c_leg_ * st.d.dot(vh) : 0.0);
-    const Vector3d f_leg = T * st.d, f_slot = st.slot * n;
-    dydt.segment<3>(p) += f_leg + f_slot;
-    dydt.segment<3>(rotation_ + 4) += (hip - com).cross(f_leg) + (st.foot - com).cross(f_slot);
+    const Vector3d f_slot = st.slot * n;
+    // The slot's force acts at the foot: at the hip, and the moment of its turning normal.
+    load_hip(i, T * st.d + f_slot, y, dydt);
+    tau += (st.foot - hip).cross(f_slot);
+    loaded = true;
     if (!rates) continue;
     const Vector3d g = reaction(i, st, n, vh, applied_actuator(i));
     const double grip = std::max(mu_, 1e-3) * g.z();
@@ -153,6 +161,86 @@ void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec&
     const double r = std::min(push.norm() / grip, 1.0 - 1e-9);
     dydt.segment<2>(k) = v_slip_ * push / (grip * std::sqrt(1.0 - r * r));
   }
+  if (loaded) load_torque(tau, y, dydt);
+}
+
+void RobotSystem::load_hip(size_t i, const Vector3d& f, const ode::Vec& y, ode::Vec& dydt) const {
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  const pr::NodeRef& h = model_.hip_node[i];
+  if (rotation_ >= 0) {
+    dydt.segment<3>(6 * body.first_mass + 3) += f;
+    dydt.segment<3>(rotation_ + 4) +=
+        (sys_.node_position(h, y) - sys_.frames(y)[model_.body].com).cross(f);
+  } else if (h.kind == pr::NodeRef::Kind::kMass) {
+    dydt.segment<3>(6 * h.index + 3) += f;
+  } else {
+    const auto& g = model_.mechanism.ghost_points[h.index];
+    for (int j = 0; j < 4; ++j) dydt.segment<3>(6 * (body.first_mass + j) + 3) += g.weights[j] * f;
+  }
+}
+
+void RobotSystem::load_torque(const Vector3d& tau, const ode::Vec& y, ode::Vec& dydt) const {
+  if (rotation_ >= 0) {
+    dydt.segment<3>(rotation_ + 4) += tau;
+    return;
+  }
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  const pr::BodyFrame& fr = sys_.frames(y)[model_.body];
+  const std::array<Matrix3d, 4> omega = pr::attitude_derivative(fr, body.local);
+  const Vector3d tau_body = fr.rotation.transpose() * tau;
+  for (int j = 0; j < 4; ++j) {
+    dydt.segment<3>(6 * (body.first_mass + j) + 3) += omega[j].transpose() * tau_body;
+  }
+}
+
+double RobotSystem::hip_inverse_mass(size_t i, const ode::Vec& y, const Vector3d& d) const {
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  const pr::NodeRef& h = model_.hip_node[i];
+  if (rotation_ >= 0) {
+    const Matrix3d iw = pr::rigid_inverse_inertia(body, sys_.frames(y)[model_.body].rotation);
+    const Vector3d rd = (sys_.node_position(h, y) - y.segment<3>(6 * body.first_mass)).cross(d);
+    return 1.0 / body.mass + rd.dot(iw * rd);
+  }
+  if (h.kind == pr::NodeRef::Kind::kMass) return inv_mass_[static_cast<size_t>(h.index)];
+  const auto& g = model_.mechanism.ghost_points[h.index];
+  double w = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    w += g.weights[j] * g.weights[j] * inv_mass_[static_cast<size_t>(body.first_mass + j)];
+  }
+  return w;
+}
+
+void RobotSystem::push_hip(size_t i, const Vector3d& j, ode::Vec& y) const {
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  const pr::NodeRef& h = model_.hip_node[i];
+  const int c = body.first_mass;
+  if (rotation_ >= 0) {
+    const Vector3d p = sys_.node_position(h, y);
+    y.segment<3>(6 * c + 3) += j;
+    y.segment<3>(rotation_ + 4) += (p - y.segment<3>(6 * c)).cross(j);
+  } else if (h.kind == pr::NodeRef::Kind::kMass) {
+    y.segment<3>(6 * h.index + 3) += j;
+  } else {
+    const auto& g = model_.mechanism.ghost_points[h.index];
+    for (int k = 0; k < 4; ++k) y.segment<3>(6 * (c + k) + 3) += g.weights[k] * j;
+  }
+}
+
+double RobotSystem::booked_body(const ode::Vec& y_ref, const ode::Vec& y0,
+                                const ode::Vec& y) const {
+  const pr::Body& body = model_.mechanism.bodies[model_.body];
+  double booked = 0.0;
+  for (size_t k = 0; k < inv_mass_.size(); ++k) {
+    const int at = 6 * static_cast<int>(k) + 3;
+    const Vector3d dp = y.segment<3>(at) - y0.segment<3>(at);
+    booked -= dp.dot(y_ref.segment<3>(at) + 0.5 * dp) * inv_mass_[k];
+  }
+  if (rotation_ >= 0) {
+    const Matrix3d iw = pr::rigid_inverse_inertia(body, sys_.frames(y)[model_.body].rotation);
+    const Vector3d dL = y.segment<3>(rotation_ + 4) - y0.segment<3>(rotation_ + 4);
+    booked -= dL.dot(iw * (y_ref.segment<3>(rotation_ + 4) + 0.5 * dL));
+  }
+  return booked;
 }
 
 Vector2d RobotSystem::creep(size_t i, double h, const Vector2d& s0, const Vector3d& hip,
@@ -236,40 +324,24 @@ double RobotSystem::relax(double h, ode::Vec& y, bool* forces_moved) const {
   return released;
 }
 
-void RobotSystem::push_body(const Vector3d& p, const Vector3d& j, ode::Vec& y) const {
-  const int c = model_.mechanism.bodies[model_.body].first_mass;
-  y.segment<3>(6 * c + 3) += j;
-  y.segment<3>(rotation_ + 4) += (p - y.segment<3>(6 * c)).cross(j);
-}
-
 double RobotSystem::dissipate(double t, double h, const ode::Vec& y_ref, ode::Vec& y) const {
   const double inner = sys_.dissipate(t, h, y_ref, y);
   if (qs_states_ == 0 || !(c_leg_ > 0.0)) return inner;
-  const pr::Body& body = model_.mechanism.bodies[model_.body];
-  const int c = 6 * body.first_mass;
-  const Vector3d p0 = y.segment<3>(c + 3), L0 = y.segment<3>(rotation_ + 4);
-  const Matrix3d R = sys_.frames(y)[model_.body].rotation;
-  const Matrix3d iw = pr::rigid_inverse_inertia(body, R);
   bool any = false;
   // Each landed leg's damper between the hip and the held foot, backward Euler at fixed
   // positions: the extension rate u falls to u / (1 + w c h), w the hip's inverse effective
   // mass along the leg.
   for (size_t i = 0; i < pinned_.size(); ++i) {
     if (!pinned_[i]) continue;
-    const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-    const Stance st = stance_at(i, y);
-    const Vector3d rd = (hip - y.segment<3>(c)).cross(st.d);
-    const double w = 1.0 / body.mass + rd.dot(iw * rd);
-    const double u = st.d.dot(sys_.node_velocity(model_.hip_node[i], y));
-    push_body(hip, (-c_leg_ * h * u / (1.0 + w * c_leg_ * h)) * st.d, y);
+    if (!any) y_damp_ = y;
     any = true;
+    const Stance st = stance_at(i, y);
+    const double w = hip_inverse_mass(i, y, st.d);
+    const double u = st.d.dot(sys_.node_velocity(model_.hip_node[i], y));
+    push_hip(i, (-c_leg_ * h * u / (1.0 + w * c_leg_ * h)) * st.d, y);
   }
   if (!any) return inner;
-  // The booking of the split (MechanismSystem::dissipate): -dP . (v_ref + dP / 2M) and the
-  // rotation's -dL . I_w^-1 (L_ref + dL / 2).
-  const Vector3d dp = y.segment<3>(c + 3) - p0, dL = y.segment<3>(rotation_ + 4) - L0;
-  return inner - dp.dot(y_ref.segment<3>(c + 3) + 0.5 * dp) / body.mass -
-         dL.dot(iw * (y_ref.segment<3>(rotation_ + 4) + 0.5 * dL));
+  return inner + booked_body(y_ref, y_damp_, y);
 }
 
 pr::Energies RobotSystem::energies(const ode::Vec& y) const {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
 #include "sim/robot/feet_step_bound.hpp"
@@ -63,16 +65,20 @@ TEST_CASE("quasi-static feet: the setting is read, refused where it cannot act, 
   CHECK_FALSE(io::scene_to_json(load({kRigid}))["pseudo_rigid"].contains("feet"));
   CHECK(io::scene_to_json(io::parse_scene(io::scene_to_json(q), "resolved")) ==
         io::scene_to_json(q));
-  for (const std::vector<std::string>& bad :
-       {std::vector<std::string>{kRigid, "/pseudo_rigid/feet=\"massless\""},
-        std::vector<std::string>{"/pseudo_rigid/body=\"four_masses\"", kQuasi}}) {
-    try {
-      load(bad);
-      FAIL("accepted: " << bad.back());
-    } catch (const io::InputError& e) {
-      CHECK(std::string(e.what()).find("/pseudo_rigid/feet") != std::string::npos);
-    }
+  try {
+    load({kRigid, "/pseudo_rigid/feet=\"massless\""});
+    FAIL("accepted \"massless\"");
+  } catch (const io::InputError& e) {
+    CHECK(std::string(e.what()).find("/pseudo_rigid/feet") != std::string::npos);
   }
+  // Both bodies; not on dummy hip masses (a hip off the body) or locked hips (no slot).
+  CHECK(load({"/pseudo_rigid/body=\"four_masses\"", kQuasi}).pseudo_rigid.feet ==
+        scene::PseudoRigid::Feet::kQuasiStatic);
+  CHECK_THROWS_WITH(robot::build_robot(load({"/pseudo_rigid/body=\"four_masses\"", kQuasi,
+                                             "/pseudo_rigid/hips=\"dummy\""})),
+                    Catch::Contains("dummy"));
+  CHECK_THROWS_WITH(robot::build_robot(load({kRigid, kQuasi, "/pseudo_rigid/hip_rotation=false"})),
+                    Catch::Contains("hip_rotation"));
 }
 
 // Standing level with the legs vertical under the hips: each leg is its spring k in series
@@ -164,6 +170,59 @@ TEST_CASE("quasi-static feet: the step bound's roll mode in closed form", "[robo
   CHECK(robot::quasi_static_omega(s, m) >= omega);
 }
 
+// The four-mass body: the bound's 12 x 12 stiffness against central differences of the
+// body's own force law (RobotSystem's conservative forces on its four masses, standing level
+// on its feet at the rest length, every foot pinned under its hip), so that the bound auto
+// steps at is the body's stiffest mode as the stepper sees it.
+TEST_CASE("quasi-static feet: the four-mass body's step bound is its force law's stiffest mode",
+          "[robot]") {
+  // (the stance feedback off: its moments are not a potential's)
+  const scene::Scene s =
+      load({"/pseudo_rigid/body=\"four_masses\"", kQuasi, "/pseudo_rigid/stance_attitude/kp=[0,0]",
+            "/pseudo_rigid/stance_attitude/kd=[0,0]"});
+  const robot::RobotModel m = robot::build_robot(s);
+  REQUIRE(m.quasi_static_feet);
+  const pseudorigid::MechanismInputs inputs(m.mechanism);
+  robot::RobotSystem sys(m, inputs, s.pseudo_rigid);
+  const pseudorigid::Body& body = m.mechanism.bodies[m.body];
+  REQUIRE(sys.rotation_state() < 0);
+  // Level, the hips at the legs' rest length above the ground, at rest.
+  ode::Vec y = sys.initial_state();
+  const double z = m.rest_length[0] - m.hip[0].z();
+  for (int j = 0; j < 4; ++j) {
+    const int c = 6 * (body.first_mass + j);
+    y.segment<3>(c) = body.local[static_cast<size_t>(j)] + Vector3d(0.0, 0.0, z);
+    y.segment<3>(c + 3).setZero();
+  }
+  for (size_t i = 0; i < m.hip.size(); ++i) {
+    sys.foot_direction()[i] = -Vector3d::UnitZ();
+    sys.land_foot(i, y);
+  }
+  Eigen::Matrix<double, 12, 12> K, M = Eigen::Matrix<double, 12, 12>::Zero();
+  ode::Vec fp(sys.dimension()), fm(sys.dimension());
+  for (int col = 0; col < 12; ++col) {
+    const int at = 6 * (body.first_mass + col / 3) + col % 3;
+    const double h = 1e-7;
+    ode::Vec yp = y, ym = y;
+    yp[at] += h;
+    ym[at] -= h;
+    sys.conservative_rhs(0.0, yp, fp);
+    sys.conservative_rhs(0.0, ym, fm);
+    for (int row = 0; row < 12; ++row) {
+      const int r = 6 * (body.first_mass + row / 3) + 3 + row % 3;
+      K(row, col) = -(fp[r] - fm[r]) / (2.0 * h);
+    }
+    M(col, col) = m.mechanism.masses[static_cast<size_t>(body.first_mass + col / 3)].mass;
+  }
+  const Eigen::Matrix<double, 12, 12> Ks = 0.5 * (K + K.transpose());
+  CHECK((K - K.transpose()).norm() < 1e-5 * K.norm());  // a potential's Hessian
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(
+      Ks, M, Eigen::EigenvaluesOnly);
+  const double omega = std::sqrt(eig.eigenvalues().maxCoeff());
+  CHECK(robot::quasi_static_omega(s, m, 1.0, -Vector3d::UnitZ()) == Approx(omega).epsilon(1e-4));
+  CHECK(robot::quasi_static_omega(s, m) >= omega);
+}
+
 TEST_CASE("quasi-static feet: auto steps at the bound, a fixed step past it ends diverged",
           "[robot]") {
   const scene::Scene s = load({kRigid, kQuasi, "/simulation/duration=1"});
@@ -192,8 +251,11 @@ TEST_CASE("quasi-static feet: auto steps at the bound, a fixed step past it ends
 // setpoint, the passive robot collapses within 0.85 s on either feet, and on the quasi-static
 // feet the balance then drifts by 1.4e-2 of the scale as the feet slide out.)
 TEST_CASE("quasi-static feet: a passive drop keeps its energy balance", "[robot]") {
+  const std::string body =
+      GENERATE(std::string(kRigid), std::string("/pseudo_rigid/body=\"four_masses\""));
+  INFO(body);
   const robot::RobotRunResult r =
-      robot::simulate(load({kRigid, kQuasi, "/pseudo_rigid/actuators=false",
+      robot::simulate(load({body, kQuasi, "/pseudo_rigid/actuators=false",
                             "/initial/attitude_deg=[3,2,0]", "/initial/position=[0,0,0.4]",
                             "/controller/setpoint/velocity=[0,0,0]", "/simulation/duration=1.5"}));
   REQUIRE(r.samples.size() > 100);
