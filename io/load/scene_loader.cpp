@@ -355,11 +355,7 @@ void parse_scene_header(JsonReader& r, scene::Scene* s) {
   const std::string model = r.choice_or("model", "impulse", scene::model_names());
   s->model = scene::model_kind(model).value_or(scene::ModelKind::kImpulse);
   if (s->model == scene::ModelKind::kMujoco && !scene::mujoco_available()) {
-    throw InputError(
-        r.file(), "/model",
-        "impulse, pulse or pseudo_rigid (this pronk was built without MuJoCo: "
-        "install Debian's libmujoco-dev, e.g. with bash scripts/setup.sh, and rebuild)",
-        "\"mujoco\"");
+    throw InputError(r.file(), "/model", scene::model_names_expected(), "\"mujoco\"");
   }
   s->gravity = r.number_or("gravity", 9.81, 0.0, 1e3);
   const std::string att =

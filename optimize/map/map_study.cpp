@@ -182,13 +182,7 @@ MapAxis parse_axis(io::JsonReader r, const json& node, const json& scene_doc) {
 scene::ModelKind model_of(const std::string& file, const std::string& pointer, const json& v) {
   const auto kind = v.is_string() ? scene::model_kind(v.get<std::string>()) : std::nullopt;
   if (kind && (*kind != scene::ModelKind::kMujoco || scene::mujoco_available())) return *kind;
-  throw io::InputError(file, pointer,
-                       scene::model_names_expected() +
-                           (scene::mujoco_available()
-                                ? ""
-                                : " (this pronk was built without MuJoCo: install libmujoco-dev "
-                                  "and rebuild for \"mujoco\")"),
-                       io::describe(v));
+  throw io::InputError(file, pointer, scene::model_names_expected(), io::describe(v));
 }
 
 // The full model must be able to build the robot of `s` (the scene's "pseudo_rigid" settings).

@@ -27,6 +27,11 @@ std::string model_names_expected() {
   for (size_t i = 0; i < names.size(); ++i) {
     out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + names[i] + "\"");
   }
+  if (!mujoco_available()) {
+    out +=
+        " (this pronk was built without MuJoCo: install Debian's libmujoco-dev, e.g. with "
+        "bash scripts/setup.sh, and rebuild for \"mujoco\")";
+  }
   return out;
 }
 

@@ -29,7 +29,7 @@ const std::vector<std::string>& model_names();
 /// The model named `name`, or nothing for a name that is none of model_names().
 std::optional<ModelKind> model_kind(std::string_view name);
 /// The names of the models this build runs, as an error's "expected": "impulse", "pulse",
-/// "pseudo_rigid" or "mujoco" (without MuJoCo: the first three).
+/// "pseudo_rigid" or "mujoco" (without MuJoCo: the first three, and how to get the fourth).
 std::string model_names_expected();
 
 /// The full model's robot and controller (legs, feet, hip placement, the `pseudo_rigid`

@@ -76,8 +76,8 @@ TEST_CASE("map rejects bad input with exit 2 naming file and pointer", "[cli][ma
                       (pronk::scene::mujoco_available()
                            ? std::string(", \"pseudo_rigid\" or \"mujoco\"")
                            : std::string(" or \"pseudo_rigid\" (this pronk was built without "
-                                         "MuJoCo: install libmujoco-dev and rebuild for "
-                                         "\"mujoco\")")) +
+                                         "MuJoCo: install Debian's libmujoco-dev, e.g. with "
+                                         "bash scripts/setup.sh, and rebuild for \"mujoco\")")) +
                       ", found string \"pseudo-rigid\"",
                   0) == 0);
   CHECK_FALSE(fs::exists(d.path + "/o/journal.jsonl"));
