@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/measure.hpp"
 #include "bench/bench_clock.hpp"
 #include "io/load/scene_loader.hpp"
 #include "sim/robot/fidelity.hpp"
@@ -29,13 +30,6 @@ struct Setting {
   std::vector<double> cpu, engine;
   RunResult last;
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 RunResult run(const std::vector<std::string>& set, double* cpu) {
   std::vector<std::string> all = set;
@@ -120,8 +114,8 @@ int main(int argc, char** argv) {
         "\"steps\": %ld, \"first_10_strides\": {\"compared\": %ld, \"apex_max_rel\": %.3g, "
         "\"stance_max_rel\": %.3g, \"touchdown_attitude_max_deg\": %.3g}}%s\n",
         s.name.c_str(), std::string(reduced::to_string(s.last.run.status)).c_str(),
-        s.last.run.t_end, s.last.run.strides.size(), median(s.cpu),
-        *std::min_element(s.cpu.begin(), s.cpu.end()), median(s.engine),
+        s.last.run.t_end, s.last.run.strides.size(), app::bench::median(s.cpu),
+        *std::min_element(s.cpu.begin(), s.cpu.end()), app::bench::median(s.engine),
         s.last.run.cost.solver.steps_accepted, d.strides, d.max_apex_relative,
         d.max_stance_relative, d.max_attitude * 180.0 / M_PI, i + 1 < all.size() ? "," : "");
   }

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/measure.hpp"
 #include "bench/bench_clock.hpp"
 #include "io/load/scene_loader.hpp"
 #include "sim/robot/robot_simulator.hpp"
@@ -31,12 +32,6 @@ struct Setting {
   std::vector<double> cpu;
   robot::RobotRunResult last;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 robot::RobotRunResult run(const std::string& path, const std::vector<std::string>& set,
                           double* cpu) {
@@ -139,9 +134,9 @@ int main(int argc, char** argv) {
         "\"first_10_strides\": {\"compared\": %zu, \"apex_max_rel\": %.3g, "
         "\"touchdown_attitude_max_deg\": %.3g, \"contact_max_rel\": %.3g},%s\n",
         name.c_str(), std::string(reduced::to_string(s.last.run.status)).c_str(),
-        s.last.run.strides.size(), median(s.cpu), c.steps_accepted,
-        1e6 * median(s.cpu) / std::max(1L, c.steps_accepted), worst_balance(s.last), a.strides,
-        a.apex, a.attitude_deg, a.contact, "");
+        s.last.run.strides.size(), app::bench::median(s.cpu), c.steps_accepted,
+        1e6 * app::bench::median(s.cpu) / std::max(1L, c.steps_accepted), worst_balance(s.last),
+        a.strides, a.apex, a.attitude_deg, a.contact, "");
     // The first 10 strides themselves: apex [m], touchdown roll and pitch [deg], contact [s].
     std::printf("     \"strides_10\": [");
     for (size_t k = 0; k < a.strides; ++k) {

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench/measure.hpp"
 #include "bench/bench_clock.hpp"
 #include "optimize/staged_study.hpp"
 
@@ -30,12 +31,6 @@ struct Setting {
   std::vector<double> wall, cpu;
   optimize::Evaluation last;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 optimize::Study full_stage(const std::vector<std::string>& extra, int threads) {
   const std::string dir = std::string(PRONK_SOURCE_DIR) + "/studies/";
@@ -107,8 +102,8 @@ int main(int argc, char** argv) {
         "\"not_completed\": %d, \"cost\": %.6g, \"evaluation_wall_s_median\": %.4g, "
         "\"evaluation_cpu_s_median\": %.4g, \"stage_200_wall_s\": %.4g}%s\n",
         s.name.c_str(), s.last.ok ? "true" : "false", s.last.scenarios.size(), stabilized, fell,
-        s.last.cost, median(s.wall), median(s.cpu), 200.0 * median(s.wall),
-        i + 1 < all.size() ? "," : "");
+        s.last.cost, app::bench::median(s.wall), app::bench::median(s.cpu),
+        200.0 * app::bench::median(s.wall), i + 1 < all.size() ? "," : "");
   }
   std::printf("  ]\n}\n");
   return 0;

@@ -164,6 +164,13 @@ class MechanismSystem final : public ode::MechanicalSystem {
   long memo_hits() const { return memo_hits_; }
   /// The run-time inputs it reads.
   const MechanismInputs& inputs() const { return *in_; }
+  /// The inverse effective mass of node n at y for an impulse along unit d [1/kg]:
+  /// inverse_mass(n) (a ghost point of four masses: sum w_i^2 / m_i by its barycentric
+  /// weights) unless n is a ghost point of a rigid body, 1/M + (r x d) . I_w^-1 (r x d) there.
+  double inverse_mass_along(const NodeRef& n, const ode::Vec& y, const Eigen::Vector3d& d) const;
+  /// Applies impulse j [N s] at node n to the momenta of y (a ghost point of four masses: by
+  /// its barycentric weights; of a rigid body: its momentum and angular momentum).
+  void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
 
  private:
   /// The constructors': the inputs held (own) or, when null, the run's (inputs).
@@ -211,14 +218,10 @@ class MechanismSystem final : public ode::MechanicalSystem {
   /// dissipate(): inverse effective mass of node n for an impulse [1/kg] (barycentric
   /// ghost transfer: sum w_i^2 / m_i; anchors 0), and the impulse J [N s] applied to it.
   double inverse_mass(const NodeRef& n) const;
-  /// The inverse effective mass of node n for an impulse along unit d [1/kg]: inverse_mass(n)
-  /// unless n is a ghost point of a rigid body, 1/M + (r x d) . I_w^-1 (r x d) there.
-  double inverse_mass_along(const NodeRef& n, const ode::Vec& y, const Eigen::Vector3d& d) const;
   /// n is a ghost point of a rigid body.
   bool rigid_node(const NodeRef& n) const {
     return n.kind == NodeRef::Kind::kGhost && rot_[m_.ghost_points[n.index].body] >= 0;
   }
-  void add_impulse(const NodeRef& n, const Eigen::Vector3d& j, ode::Vec& y) const;
   /// Body-attached surface si on a rigid body: the force on node n, its reaction at the
   /// surface's ghost point and the torque of the turning direction (attached_surface_forces)
   /// into force_ and torque_.

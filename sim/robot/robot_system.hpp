@@ -201,10 +201,6 @@ class RobotSystem final : public ode::MechanicalSystem {
   /// through the fitted attitude's derivative with respect to the masses, the gradient of an
   /// energy of the body's attitude).
   void load_torque(const Eigen::Vector3d& tau, const ode::Vec& y, ode::Vec& dydt) const;
-  /// The body's inverse effective mass at leg i's hip along unit d [1/kg].
-  double hip_inverse_mass(size_t i, const ode::Vec& y, const Eigen::Vector3d& d) const;
-  /// Impulse j [N s] at leg i's hip on the body's momenta in y.
-  void push_hip(size_t i, const Eigen::Vector3d& j, ode::Vec& y) const;
   /// The kinetic energy change booked by the dissipation split for momenta moved from y0 to
   /// y, against the reference momenta of y_ref [J] (MechanismSystem::dissipate's booking:
   /// -dP . (v_ref + dP / 2M) per mass, and the rigid body's rotation's).

@@ -193,39 +193,6 @@ void RobotSystem::load_torque(const Vector3d& tau, const ode::Vec& y, ode::Vec& 
   }
 }
 
-double RobotSystem::hip_inverse_mass(size_t i, const ode::Vec& y, const Vector3d& d) const {
-  const pr::Body& body = model_.mechanism.bodies[model_.body];
-  const pr::NodeRef& h = model_.hip_node[i];
-  if (rotation_ >= 0) {
-    const Matrix3d iw = pr::rigid_inverse_inertia(body, sys_.frames(y)[model_.body].rotation);
-    const Vector3d rd = (sys_.node_position(h, y) - y.segment<3>(6 * body.first_mass)).cross(d);
-    return 1.0 / body.mass + rd.dot(iw * rd);
-  }
-  if (h.kind == pr::NodeRef::Kind::kMass) return inv_mass_[static_cast<size_t>(h.index)];
-  const auto& g = model_.mechanism.ghost_points[h.index];
-  double w = 0.0;
-  for (int j = 0; j < 4; ++j) {
-    w += g.weights[j] * g.weights[j] * inv_mass_[static_cast<size_t>(body.first_mass + j)];
-  }
-  return w;
-}
-
-void RobotSystem::push_hip(size_t i, const Vector3d& j, ode::Vec& y) const {
-  const pr::Body& body = model_.mechanism.bodies[model_.body];
-  const pr::NodeRef& h = model_.hip_node[i];
-  const int c = body.first_mass;
-  if (rotation_ >= 0) {
-    const Vector3d p = sys_.node_position(h, y);
-    y.segment<3>(6 * c + 3) += j;
-    y.segment<3>(rotation_ + 4) += (p - y.segment<3>(6 * c)).cross(j);
-  } else if (h.kind == pr::NodeRef::Kind::kMass) {
-    y.segment<3>(6 * h.index + 3) += j;
-  } else {
-    const auto& g = model_.mechanism.ghost_points[h.index];
-    for (int k = 0; k < 4; ++k) y.segment<3>(6 * (c + k) + 3) += g.weights[k] * j;
-  }
-}
-
 double RobotSystem::booked_body(const ode::Vec& y_ref, const ode::Vec& y0,
                                 const ode::Vec& y) const {
   const pr::Body& body = model_.mechanism.bodies[model_.body];
@@ -336,9 +303,10 @@ double RobotSystem::dissipate(double t, double h, const ode::Vec& y_ref, ode::Ve
     if (!any) y_damp_ = y;
     any = true;
     const Stance st = stance_at(i, y);
-    const double w = hip_inverse_mass(i, y, st.d);
-    const double u = st.d.dot(sys_.node_velocity(model_.hip_node[i], y));
-    push_hip(i, (-c_leg_ * h * u / (1.0 + w * c_leg_ * h)) * st.d, y);
+    const pr::NodeRef& hip = model_.hip_node[i];
+    const double w = sys_.inverse_mass_along(hip, y, st.d);
+    const double u = st.d.dot(sys_.node_velocity(hip, y));
+    sys_.add_impulse(hip, (-c_leg_ * h * u / (1.0 + w * c_leg_ * h)) * st.d, y);
   }
   if (!any) return inner;
   return inner + booked_body(y_ref, y_damp_, y);
