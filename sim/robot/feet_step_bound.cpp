@@ -51,26 +51,37 @@ double four_mass_omega(const scene::Scene& s, const RobotModel& m, double rest_s
   rest.stretch.setZero();
   for (const Vector3d& l : body.local) rest.stretch += l * l.transpose();
   const std::array<Eigen::Matrix3d, 4> omega = pr::attitude_derivative(rest, body.local);
-  const Vector3d slot = dir.cross(Vector3d::UnitX());
+  const std::array<Vector3d, 2> slot = slot_normals(dir, !p.hip_rotation);
   for (size_t i = 0; i < m.hip.size(); ++i) {
     const Eigen::Vector4d w = m.mechanism.ghost_points[m.hip_node[i].index].weights;
     const Vector3d r = rest_scale * m.rest_length[i] * dir;  // hip -> foot
-    Vector12d leg, sl;
-    for (int j = 0; j < 4; ++j) {
-      leg.segment<3>(3 * j) = w[j] * dir;
-      if (slot.norm() > 1e-6) {
-        const Vector3d n = slot.normalized();
+    Vector12d leg;
+    for (int j = 0; j < 4; ++j) leg.segment<3>(3 * j) = w[j] * dir;
+    K += p.leg_stiffness * leg * leg.transpose();
+    for (const Vector3d& n : slot) {
+      if (n.squaredNorm() == 0.0) continue;
+      Vector12d sl;
+      for (int j = 0; j < 4; ++j) {
         sl.segment<3>(3 * j) = -w[j] * n + omega[static_cast<size_t>(j)].transpose() * n.cross(r);
       }
+      K += p.internal_stiffness * sl * sl.transpose();
     }
-    K += p.leg_stiffness * leg * leg.transpose();
-    if (slot.norm() > 1e-6) K += p.internal_stiffness * sl * sl.transpose();
   }
   const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix12d> eig(K, M, Eigen::EigenvaluesOnly);
   return std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
 }
 
 }  // namespace
+
+std::array<Vector3d, 2> slot_normals(const Vector3d& dir, bool locked) {
+  Vector3d n1 = dir.cross(Vector3d::UnitX());
+  if (!locked) {
+    return {n1.norm() > 1e-6 ? Vector3d(n1.normalized()) : Vector3d::Zero(), Vector3d::Zero()};
+  }
+  if (n1.norm() <= 1e-6) n1 = dir.cross(Vector3d::UnitY());
+  n1.normalize();
+  return {n1, dir.cross(n1).normalized()};
+}
 
 double quasi_static_omega(const scene::Scene& s, const RobotModel& m, double rest_scale,
                           const Vector3d& dir) {
@@ -82,11 +93,13 @@ double quasi_static_omega(const scene::Scene& s, const RobotModel& m, double res
     j << u, at.cross(u);
     K += k * j * j.transpose();
   };
-  const Vector3d slot = dir.cross(Vector3d::UnitX());
+  const std::array<Vector3d, 2> slot = slot_normals(dir, !p.hip_rotation);
   for (size_t i = 0; i < m.hip.size(); ++i) {
     const Vector3d foot = m.hip[i] + rest_scale * m.rest_length[i] * dir;
     add(p.leg_stiffness, -dir, m.hip[i]);
-    if (slot.norm() > 1e-6) add(p.internal_stiffness, slot.normalized(), foot);
+    for (const Vector3d& n : slot) {
+      if (n.squaredNorm() > 0.0) add(p.internal_stiffness, n, foot);
+    }
   }
   Matrix6d M = Matrix6d::Zero();
   M.topLeftCorner<3, 3>() = s.body.mass * Eigen::Matrix3d::Identity();

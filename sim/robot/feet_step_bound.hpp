@@ -12,17 +12,26 @@
 // K v = omega^2 M v. More feet only stiffen K (its largest eigenvalue is monotone), so all feet
 // down bounds every stance. The geometry turns with the placement: the bound is the largest
 // omega over the legs' rest lengths 0.75 .. 1.25 of nominal (level_feet's range) and the legs
-// turned fore-aft and sideways by up to max_leg_angle (all legs alike). On the four-mass body
+// turned fore-aft and sideways by up to max_leg_angle (all legs alike). A locked stance hip
+// holds its foot on the leg's line: two slot springs, across the leg, at the foot. On the
+// four-mass body
 // the same springs load the masses (the hip's barycentric weights; the slot's turning normal
 // through the fitted attitude's derivative) beside the six body springs: a 12 x 12 problem.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "sim/robot/pseudo_rigid_robot.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace pronk::robot {
+
+/// The slot normals (body frame, unit; zero when absent) that hold a landed quasi-static foot
+/// of a leg along body-frame unit direction dir (hip -> foot): a free hip's slot is the plane
+/// of the leg and the body x axis (normal dir x x; none for a leg along x), a locked hip's the
+/// leg's line (two normals across it).
+std::array<Eigen::Vector3d, 2> slot_normals(const Eigen::Vector3d& dir, bool locked);
 
 /// omega_max of the body on quasi-static feet [rad/s] (see the file comment); 0 for a model
 /// without them.

@@ -203,12 +203,6 @@ RobotModel build_robot(const scene::Scene& s) {
         "quasi-static feet need hips on the body (\"hips\": \"ghost_points\"), not dummy hip "
         "masses");
   }
-  if (r.quasi_static_feet && !p.hip_rotation) {
-    // (their stance is the free hip's slot; a locked hip's line is not implemented)
-    throw std::invalid_argument(
-        "quasi-static feet need free stance hips (\"hip_rotation\"): a pinned foot is held "
-        "by its hip's slot");
-  }
   Vector3d offset = Vector3d::Zero();
   const pr::BodySpec b = add_robot_body(s, hips, dummy, rigid, r, &offset);
   for (size_t i = 0; i < hips.size(); ++i) add_robot_leg(s, i, hips[i], offset, dummy, b, r);

@@ -69,7 +69,7 @@ RobotRun::RobotRun(const scene::Scene& scene, const RobotModel& model,
   run_.record = options.record_trajectory;
   run_.in_contact.assign(legs_, false);
   run_.contact_start.assign(legs_, Eigen::Vector2d::Zero());
-  if (free_stance_) {
+  if (free_stance_ || model.quasi_static_feet) {
     for (size_t i = 0; i < legs_; ++i) {
       foot_events_.push_back(std::make_unique<FootEvent>(sys_, i, model.foot[i]));
       for (auto* list : {&flight_events_, &stance_events_, &armed_events_}) {
@@ -148,7 +148,7 @@ run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
       break;
   }
   // (A foot event switched every foot due with it: on_foot.)
-  if (sys_.quasi_static() && free_stance_ && event < kFoot) catch_up_feet(t, y);
+  if (sys_.quasi_static() && event < kFoot) catch_up_feet(t, y);
   return next;
 }
 

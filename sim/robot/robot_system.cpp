@@ -29,7 +29,8 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::MechanismInputs& inp
     qs_states_ = 2 * static_cast<int>(model.hip.size());
     rest_ = model.rest_length;
     dir_ = model.direction;
-    slot_.assign(model.hip.size(), Vector3d::UnitY());
+    slot_.assign(model.hip.size(), {Vector3d::UnitY(), Vector3d::Zero()});
+    locked_ = !settings.hip_rotation;
     pinned_.assign(model.hip.size(), false);
     mu_ = settings.friction;
     v_slip_ = settings.slip_velocity;

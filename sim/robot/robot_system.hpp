@@ -10,6 +10,7 @@
 // kinetic-energy metric and momentum blocks; the actuator forces stay in the kicks.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "sim/pseudorigid/solver_norm.hpp"
@@ -91,8 +92,9 @@ class RobotSystem final : public ode::MechanicalSystem {
 
   // Quasi-static feet (RobotModel::quasi_static_feet; robot_system_feet.cpp). A landed foot
   // is pinned at its ground position (two integrated states: x, y [m]; its depth is the
-  // ground spring's in series with the leg and the slot); its hip is free in pitch (the slot,
-  // a plane through the hip holding the leg and the body x axis, normal slot_normal). In the
+  // ground spring's in series with the leg and the slot); a free hip turns in pitch (the slot,
+  // a plane through the hip holding the leg and the body x axis), a locked hip holds the foot
+  // on the leg's line (two planes; feet_step_bound.hpp's slot_normals). In the
   // air a foot sits on its leg's line (direction) at the rest length minus the leg's
   // shortening (its first state [m], relaxing as a massless foot between spring, damper and
   // actuator does), and transmits nothing.
@@ -166,32 +168,40 @@ class RobotSystem final : public ode::MechanicalSystem {
   struct Stance {
     Eigen::Vector3d foot, d;       ///< foot [m]; unit foot -> hip
     double l = 0.0, spring = 0.0;  ///< length [m]; spring force k (l0 - l) [N], + pushes
-    double slot = 0.0;             ///< slot spring force k_s e along n (on the body) [N]
-    double depth = 0.0;            ///< ground spring compression [m]
-    double energy = 0.0;           ///< springs' energy [J]
+    Eigen::Vector3d slot = Eigen::Vector3d::Zero();  ///< slot springs' force sum k_s e n [N]
+    double depth = 0.0;                              ///< ground spring compression [m]
+    double energy = 0.0;                             ///< springs' energy [J]
+  };
+  /// A landed leg's slot normals (world, unit): one for a free hip (the plane of the leg and
+  /// the body x axis), two for a locked hip (the leg's line).
+  struct Slot {
+    std::array<Eigen::Vector3d, 2> n;
+    int count = 0;
   };
   Stance stance(size_t i, const Eigen::Vector2d& s, const Eigen::Vector3d& hip,
-                const Eigen::Vector3d& n) const;
+                const Slot& sl) const;
   /// stance() of pinned leg i at its own ground position in y, memoised for every pinned leg
   /// on the body's position and attitude and the feet's states (valid until the next call).
   const Stance& stance_at(size_t i, const ode::Vec& y) const;
   void drop_memos() const { fb_memo_ = st_memo_ = false; }
-  /// World slot normal and hip of leg i at y.
-  Eigen::Vector3d slot_world(size_t i, const ode::Vec& y) const;
+  /// Landed leg i's slot normals at y (world).
+  Slot slot_world(size_t i, const ode::Vec& y) const;
+  /// Leg i's slot normals (body frame; zero when absent) for its current direction.
+  std::array<Eigen::Vector3d, 2> slot_of(size_t i) const;
   /// Adds the landed quasi-static legs' springs and slots (and, with `damped`, their dampers)
   /// to the body's momentum rates; writes the feet's state rates (`rates`: the creep and
   /// relaxation; otherwise 0).
   void add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec& dydt) const;
   /// Leg i's actuator force as extra_forces applies it (after feedback(y)) [N].
   double applied_actuator(size_t i) const;
-  /// A landed leg's ground reaction (world) [N] at s with actuator a [N] and hip velocity vh.
-  Eigen::Vector3d reaction(size_t i, const Stance& st, const Eigen::Vector3d& n,
-                           const Eigen::Vector3d& vh, double a) const;
+  /// A landed leg's ground reaction (world) [N] in stance st with actuator a [N] and hip
+  /// velocity vh.
+  Eigen::Vector3d reaction(const Stance& st, const Eigen::Vector3d& vh, double a) const;
   /// relax(): landed leg i's ground position after h [s] (backward Euler of the creep law
   /// as the minimum of the springs' energy plus the friction's dissipation potential);
   /// *released: the springs' energy it released [J].
   Eigen::Vector2d creep(size_t i, double h, const Eigen::Vector2d& s0, const Eigen::Vector3d& hip,
-                        const Eigen::Vector3d& n, const Eigen::Vector3d& vh, double a,
+                        const Slot& sl, const Eigen::Vector3d& vh, double a,
                         double* released) const;
   /// (quasi-static feet) A force f [N] at leg i's hip on the body, into the momentum rates of
   /// dydt (rigid body: its CoM and angular momentum; four masses: by the hip's barycentric
@@ -219,11 +229,13 @@ class RobotSystem final : public ode::MechanicalSystem {
   std::vector<Eigen::Vector3d> push_;
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
-  int rotation_ = -1;                        ///< rigid body: its rotation states in y
-  int qs_states_ = 0;                        ///< quasi-static feet: 2 per leg, else 0
-  std::vector<double> rest_;                 ///< quasi-static legs' rest lengths [m]
-  std::vector<bool> pinned_;                 ///< quasi-static feet on the ground
-  std::vector<Eigen::Vector3d> dir_, slot_;  ///< ... directions and slot normals (body)
+  int rotation_ = -1;                                 ///< rigid body: its rotation states in y
+  int qs_states_ = 0;                                 ///< quasi-static feet: 2 per leg, else 0
+  std::vector<double> rest_;                          ///< quasi-static legs' rest lengths [m]
+  std::vector<bool> pinned_;                          ///< quasi-static feet on the ground
+  std::vector<Eigen::Vector3d> dir_;                  ///< ... directions (body)
+  std::vector<std::array<Eigen::Vector3d, 2>> slot_;  ///< ... slot normals (body; 0: none)
+  bool locked_ = false;                               ///< (quasi-static feet) stance hips locked
   // (quasi-static feet) the body's friction, slip speed, stiffnesses and damping.
   double mu_ = 0.0, v_slip_ = 0.0, k_leg_ = 0.0, k_slot_ = 0.0, k_ground_ = 0.0, c_leg_ = 0.0;
   /// (quasi-static feet) the normal force a foot at the ground in the air must be pressed by

@@ -8,16 +8,18 @@
 // force is zero there), so a lifted foot does not sink into the ground. On the ground the
 // foot is pinned at its ground position s (two integrated states); the leg's spring (the foot
 // pressed into the ground spring in series: the depth that balances them, one Newton step from the
-// surface) pushes the hip along the foot -> hip line, the slot (a bilateral plane through the hip
-// holding the leg and the body x axis, stiffness internal_stiffness) pushes the body at the foot
-// across it, and the ground takes their sum plus the leg's damper and actuator. Its tangential part
+// surface) pushes the hip along the foot -> hip line, the slot (stiffness internal_stiffness;
+// for a free hip a bilateral plane through the hip holding the leg and the body x axis, for a
+// locked hip the leg's line, two such planes: slot_normals) pushes the body at the foot across
+// it, and the ground takes their sum plus the leg's damper and actuator. Its tangential part
 // F_t is held by friction: the regularised Coulomb law F_t = -mu N v / sqrt(|v|^2 + v_s^2)
 // read backwards is the foot's creep, v = v_s r / sqrt(1 - r^2) along the push, r = |F_t| /
-// (mu N). Method verlet advances s in MechanicalSystem::relax at the step's start, by
-// backward Euler as the minimum of the springs' energy plus the friction's dissipation
-// potential mu N (sqrt(|v|^2 + v_s^2) - v_s) h over the step, so both kicks read the forces
-// after the slide; the energy the slide releases is booked as dissipated. The leg dampers act
-// in the dissipation split on the body (the foot held), the actuators in extra_forces.
+// (mu N); on frictionless ground (mu = 0, a locked hip's line holding the foot) the foot
+// slides to where the springs balance. Method verlet advances s in MechanicalSystem::relax at the
+// step's start, by backward Euler as the minimum of the springs' energy plus the friction's
+// dissipation potential mu N (sqrt(|v|^2 + v_s^2) - v_s) h over the step, so both kicks read the
+// forces after the slide; the energy the slide releases is booked as dissipated. The leg dampers
+// act in the dissipation split on the body (the foot held), the actuators in extra_forces.
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +27,7 @@
 
 #include "sim/pseudorigid/attitude.hpp"
 #include "sim/pseudorigid/rigid_body.hpp"
+#include "sim/robot/feet_step_bound.hpp"
 #include "sim/robot/robot_system.hpp"
 
 namespace pronk::robot {
@@ -48,8 +51,13 @@ ode::Vec RobotSystem::initial_state() const {
   return y;
 }
 
-Vector3d RobotSystem::slot_world(size_t i, const ode::Vec& y) const {
-  return sys_.frames(y)[model_.body].rotation * slot_[i];
+RobotSystem::Slot RobotSystem::slot_world(size_t i, const ode::Vec& y) const {
+  const Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+  Slot sl;
+  for (const Vector3d& n : slot_[i]) {
+    if (n.squaredNorm() > 0.0) sl.n[static_cast<size_t>(sl.count++)] = R * n;
+  }
+  return sl;
 }
 
 Vector3d RobotSystem::foot_position(size_t i, const ode::Vec& y) const {
@@ -61,28 +69,38 @@ Vector3d RobotSystem::foot_position(size_t i, const ode::Vec& y) const {
 }
 
 RobotSystem::Stance RobotSystem::stance(size_t i, const Vector2d& s, const Vector3d& hip,
-                                        const Vector3d& n) const {
+                                        const Slot& sl) const {
   Stance st;
-  double e = 0.0;
+  double slot_energy = 0.0;  // 2 x the slot springs' energy [J]
   auto at = [&](double z) {
     st.foot = Vector3d(s.x(), s.y(), z);
     const Vector3d L = hip - st.foot;
     st.l = L.norm();
     st.d = st.l > 1e-12 ? Vector3d(L / st.l) : Vector3d::UnitZ();
     st.spring = k_leg_ * (rest_[i] - st.l);
-    e = (st.foot - hip).dot(n);
-    st.slot = k_slot_ * e;
+    st.slot.setZero();
+    slot_energy = 0.0;
+    for (int j = 0; j < sl.count; ++j) {
+      const double e = (st.foot - hip).dot(sl.n[static_cast<size_t>(j)]);
+      st.slot += k_slot_ * e * sl.n[static_cast<size_t>(j)];
+      slot_energy += k_slot_ * e * e;
+    }
   };
   at(0.0);
   // The ground spring in series: the depth at which it carries what the leg and the slot
   // press into it (linearised about the surface).
-  const double pressed = st.spring * st.d.z() + st.slot * n.z();
+  const double pressed = st.spring * st.d.z() + st.slot.z();
   if (pressed > 0.0 && k_ground_ > 0.0) {
-    st.depth = pressed / (k_ground_ + k_leg_ * st.d.z() * st.d.z() + k_slot_ * n.z() * n.z());
+    double k_slot_z = 0.0;  // the slot springs' vertical stiffness
+    for (int j = 0; j < sl.count; ++j) {
+      const double nz = sl.n[static_cast<size_t>(j)].z();
+      k_slot_z += k_slot_ * nz * nz;
+    }
+    st.depth = pressed / (k_ground_ + k_leg_ * st.d.z() * st.d.z() + k_slot_z);
     at(-st.depth);
   }
   const double x = rest_[i] - st.l;
-  st.energy = 0.5 * (k_leg_ * x * x + k_slot_ * e * e + k_ground_ * st.depth * st.depth);
+  st.energy = 0.5 * (k_leg_ * x * x + slot_energy + k_ground_ * st.depth * st.depth);
   return st;
 }
 
@@ -125,10 +143,9 @@ double RobotSystem::applied_actuator(size_t i) const {
   return f;
 }
 
-Vector3d RobotSystem::reaction(size_t /*i*/, const Stance& st, const Vector3d& n,
-                               const Vector3d& vh, double a) const {
+Vector3d RobotSystem::reaction(const Stance& st, const Vector3d& vh, double a) const {
   const double T = st.spring - c_leg_ * st.d.dot(vh) + a;
-  return T * st.d + st.slot * n;
+  return T * st.d + st.slot;
 }
 
 void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec& dydt) const {
@@ -143,18 +160,17 @@ void RobotSystem::add_feet(const ode::Vec& y, bool damped, bool rates, ode::Vec&
       continue;
     }
     const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-    const Vector3d n = slot_world(i, y);
     const Stance& st = stance_at(i, y);
     Vector3d vh = Vector3d::Zero();
     if (damped || rates) vh = sys_.node_velocity(model_.hip_node[i], y);
     const double T = st.spring - (damped ? c_leg_ * st.d.dot(vh) : 0.0);
-    const Vector3d f_slot = st.slot * n;
+    const Vector3d& f_slot = st.slot;
     // The slot's force acts at the foot: at the hip, and the moment of its turning normal.
     load_hip(i, T * st.d + f_slot, y, dydt);
     tau += (st.foot - hip).cross(f_slot);
     loaded = true;
     if (!rates) continue;
-    const Vector3d g = reaction(i, st, n, vh, applied_actuator(i));
+    const Vector3d g = reaction(st, vh, applied_actuator(i));
     const double grip = std::max(mu_, 1e-3) * g.z();
     if (!(grip > 0.0)) continue;
     const Vector2d push = -g.head<2>();
@@ -211,11 +227,10 @@ double RobotSystem::booked_body(const ode::Vec& y_ref, const ode::Vec& y0,
 }
 
 Vector2d RobotSystem::creep(size_t i, double h, const Vector2d& s0, const Vector3d& hip,
-                            const Vector3d& n, const Vector3d& vh, double a,
-                            double* released) const {
-  const Stance st0 = stance(i, s0, hip, n);
+                            const Slot& sl, const Vector3d& vh, double a, double* released) const {
+  const Stance st0 = stance(i, s0, hip, sl);
   *released = 0.0;
-  const double normal = reaction(i, st0, n, vh, a).z();
+  const double normal = reaction(st0, vh, a).z();
   if (!(normal > 0.0)) return s0;  // lifting off: the event takes it
   const double grip = mu_ * normal;
   const double hv = h * v_slip_;
@@ -234,15 +249,21 @@ Vector2d RobotSystem::creep(size_t i, double h, const Vector2d& s0, const Vector
     const double axial = a - c_leg_ * q.st.d.dot(vh);
     const double rho = std::sqrt(D.squaredNorm() + hv * hv);
     q.phi = q.st.energy - axial * q.st.l + grip * (rho - hv);
-    q.grad = reaction(i, q.st, n, vh, a).head<2>() + grip * D / rho;
+    q.grad = reaction(q.st, vh, a).head<2>() + grip * D / rho;
     return q;
   };
-  auto eval = [&](const Vector2d& D) { return point(D, stance(i, s0 + D, hip, n)); };
+  auto eval = [&](const Vector2d& D) { return point(D, stance(i, s0 + D, hip, sl)); };
+  // The slot's stiffness across the ground (its normals' ground parts).
+  Matrix2d K_slot = Matrix2d::Zero();
+  for (int j = 0; j < sl.count; ++j) {
+    const Vector2d nt = sl.n[static_cast<size_t>(j)].head<2>();
+    K_slot += k_slot_ * nt * nt.transpose();
+  }
   Point q = point(Vector2d::Zero(), st0);
   for (int it = 0; it < kMaxIterations; ++it) {
     const double rho = std::sqrt(q.D.squaredNorm() + hv * hv);
-    const Vector2d dt = q.st.d.head<2>(), nt = n.head<2>();
-    Matrix2d H = k_leg_ * dt * dt.transpose() + k_slot_ * nt * nt.transpose();
+    const Vector2d dt = q.st.d.head<2>();
+    Matrix2d H = k_leg_ * dt * dt.transpose() + K_slot;
     H += (grip / rho) * (Matrix2d::Identity() - q.D * q.D.transpose() / (rho * rho));
     H += 1e-9 * (k_leg_ + k_slot_ + grip / hv) * Matrix2d::Identity();
     Vector2d step = -H.ldlt().solve(q.grad);
@@ -279,11 +300,10 @@ double RobotSystem::relax(double h, ode::Vec& y, bool* forces_moved) const {
       continue;
     }
     const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-    const Vector3d n = slot_world(i, y);
     const Vector3d vh = sys_.node_velocity(model_.hip_node[i], y);
     const Vector2d s0 = y.segment<2>(k);
     double lost = 0.0;
-    const Vector2d s1 = creep(i, h, s0, hip, n, vh, applied_actuator(i), &lost);
+    const Vector2d s1 = creep(i, h, s0, hip, slot_world(i, y), vh, applied_actuator(i), &lost);
     released += lost;
     y.segment<2>(k) = s1;
     *forces_moved = *forces_moved || s1 != s0;
@@ -327,19 +347,13 @@ double RobotSystem::foot_energy(size_t i, const ode::Vec& y) const {
 Vector3d RobotSystem::ground_reaction(size_t i, const ode::Vec& y, bool fb) const {
   if (!pinned_[i]) return Vector3d::Zero();
   if (fb) feedback(y);
-  const Vector3d n = slot_world(i, y);
   const Stance& st = stance_at(i, y);
-  return reaction(i, st, n, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i));
+  return reaction(st, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i));
 }
 
-namespace {
-/// The slot normal (body frame) of a leg along body-frame dir: dir x the body x axis; zero
-/// for a leg along that axis (no slot).
-Vector3d slot_of(const Vector3d& dir) {
-  const Vector3d nrm = dir.cross(Vector3d::UnitX());
-  return nrm.norm() > 1e-6 ? Vector3d(nrm.normalized()) : Vector3d::Zero();
+std::array<Vector3d, 2> RobotSystem::slot_of(size_t i) const {
+  return slot_normals(dir_[i], locked_);
 }
-}  // namespace
 
 double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
   if (pinned_[i]) return ground_reaction(i, y).z();
@@ -351,18 +365,23 @@ double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
   // no band between them a foot resting unloaded switches at every step).
   feedback(y);
   const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-  const Vector3d n = sys_.frames(y)[model_.body].rotation * slot_of(dir_[i]);
-  const Stance st = stance(i, f.head<2>(), hip, n);
+  const Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+  Slot sl;
+  for (const Vector3d& n : slot_of(i)) {
+    if (n.squaredNorm() > 0.0) sl.n[static_cast<size_t>(sl.count++)] = R * n;
+  }
+  const Stance st = stance(i, f.head<2>(), hip, sl);
   const double pressed =
-      reaction(i, st, n, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i)).z();
+      reaction(st, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i)).z();
   return land_force_ - pressed;
 }
 
 void RobotSystem::land_foot(size_t i, ode::Vec& y) {
   const Vector3d f = foot_position(i, y);
   y.segment<2>(foot_state(i)) = f.head<2>();
-  slot_[i] = slot_of(dir_[i]);
-  pinned_[i] = free_[i] = true;
+  slot_[i] = slot_of(i);
+  pinned_[i] = true;
+  free_[i] = !locked_;  // a free hip turns in its slot; a locked one keeps the leg's line
   drop_memos();
 }
 
@@ -372,7 +391,7 @@ void RobotSystem::lift_foot(size_t i, ode::Vec& y) {
   const Vector2d s = y.segment<2>(foot_state(i));
   const Vector3d L = Vector3d(s.x(), s.y(), 0.0) - hip;
   const double l = L.norm();
-  if (l > 1e-9) dir_[i] = sys_.frames(y)[model_.body].rotation.transpose() * (L / l);
+  if (l > 1e-9 && !locked_) dir_[i] = sys_.frames(y)[model_.body].rotation.transpose() * (L / l);
   y[foot_state(i)] = rest_[i] - l;
   y[foot_state(i) + 1] = 0.0;
   pinned_[i] = false;  // (its hip stays free until the foot has risen: RobotRun)
