@@ -363,9 +363,9 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :
-             {"foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness", "contact_damping",
-              "friction", "slip_velocity", "hip_rotation", "stance_attitude", "level_feet",
-              "hop_trim_gain", "hop_trim_max", "thrust"}) {
+             {"feet", "foot_mass", "leg_stiffness", "leg_damping", "contact_stiffness",
+              "contact_damping", "friction", "slip_velocity", "hip_rotation", "stance_attitude",
+              "level_feet", "hop_trim_gain", "hop_trim_max", "thrust"}) {
           out.push_back(std::string("/pseudo_rigid/") + k);
         }
       } else if (!s.pseudo_rigid.hip_rotation) {

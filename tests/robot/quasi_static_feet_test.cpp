@@ -62,6 +62,11 @@ TEST_CASE("quasi-static feet: the setting is read, refused where it cannot act, 
   }
   const auto u1 = io::unused_settings(load({kRigid}));
   CHECK(std::find(u1.begin(), u1.end(), "/pseudo_rigid/foot_mass") == u1.end());
+  CHECK(std::find(u1.begin(), u1.end(), "/pseudo_rigid/feet") == u1.end());
+  // Force legs have no feet: the setting is unused there (case 5).
+  const auto u2 = io::unused_settings(io::load_scene(
+      std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case5_pr_hop_height.json", {kQuasi}));
+  CHECK(std::find(u2.begin(), u2.end(), "/pseudo_rigid/feet") != u2.end());
   // Written back only when not the default (recorded scenes keep their hash); round-trips.
   CHECK(io::scene_to_json(q)["pseudo_rigid"]["feet"] == "quasi_static");
   CHECK_FALSE(io::scene_to_json(load({kRigid}))["pseudo_rigid"].contains("feet"));
