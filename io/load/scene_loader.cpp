@@ -10,6 +10,7 @@
 #include "io/load/robot_settings.hpp"
 #include "io/load/scaled_settings.hpp"
 #include "sim/reduced/run_limits.hpp"
+#include "sim/scene/mujoco_scene.hpp"
 #include "sim/scene/robot_scaling.hpp"
 
 namespace pronk::io {
@@ -298,27 +299,10 @@ void check_run_limits(const scene::Scene& s, const std::string& file) {
   }
 }
 
-// "model": "mujoco" builds the robot with feet on slide joints (sim/mujoco/robot_mjcf.hpp).
+// "model": "mujoco" builds the robot with feet on slide joints (sim/scene/mujoco_scene.hpp).
 void check_mujoco_scene(const scene::Scene& s, const std::string& file) {
-  if (s.legs.body_only) {
-    throw InputError(file, "/legs/kind", "\"legged\" (MuJoCo runs the robot with its legs)",
-                     "\"body_only\"");
-  }
-  if (s.pseudo_rigid.legs != scene::PseudoRigid::Legs::kSpring) {
-    throw InputError(file, "/pseudo_rigid/legs",
-                     "\"spring\" (MuJoCo's legs are spring-damper slides with feet)", "\"force\"");
-  }
-  if (!(s.pseudo_rigid.foot_mass > 0.0)) {
-    throw InputError(file, "/pseudo_rigid/foot_mass", "a foot mass > 0 kg for MuJoCo's feet",
-                     number_text(s.pseudo_rigid.foot_mass));
-  }
-  const double flight = std::sqrt(2.0 * s.controller.hop_height / std::max(s.gravity, 1e-9));
-  if (s.mujoco.timestep > 0.1 * flight) {
-    throw InputError(
-        file, "/mujoco/timestep",
-        "a step below a tenth of the hop's fall time (" + number_text(0.1 * flight) + " s)",
-        number_text(s.mujoco.timestep));
-  }
+  if (const auto r = scene::mujoco_refusal(s))
+    throw InputError(file, r->pointer, r->expected, r->found);
 }
 
 // "mujoco": MuJoCo's integrator and step.

@@ -9,6 +9,7 @@
 #include "io/load/scene_loader.hpp"
 #include "optimize/study.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
+#include "sim/scene/mujoco_scene.hpp"
 #include "sim/scene/robot_scaling.hpp"
 #include "sim/scene/scene.hpp"
 
@@ -468,6 +469,12 @@ MapStudy parse_map_study(const json& doc, const std::string& file, const std::st
                                       [](auto m) { return scene::is_full_model(m); });
   if (full_model)
     check_robot(st.base_scene, st.scene_file, "/pseudo_rigid", "a robot the full model can build");
+  // (each cell's model is set here, past the scene loader's check of "model": "mujoco")
+  if (std::find(st.models.begin(), st.models.end(), scene::ModelKind::kMujoco) != st.models.end()) {
+    if (const auto m = scene::mujoco_refusal(st.base_scene)) {
+      throw io::InputError(st.scene_file, m->pointer, m->expected, m->found);
+    }
+  }
   parse_map_study_axes(r, doc, file, &st);
   parse_map_study_trials(r.object("trials"), &st);
   parse_map_study_criteria(r, &st);

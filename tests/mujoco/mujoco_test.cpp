@@ -85,6 +85,9 @@ TEST_CASE("mujoco: a scene of another fidelity or a step too long is refused wit
         "/mujoco/step");
   CHECK(error_of("pr_running", {"/model=\"mujoco\"", "/pseudo_rigid/legs=\"force\""}).pointer() ==
         "/pseudo_rigid/legs");
+  // (MuJoCo's feet are bodies: massless feet are the full model's alone)
+  CHECK(error_of("pr_running", {"/model=\"mujoco\"", "/pseudo_rigid/feet=\"quasi_static\""})
+            .pointer() == "/pseudo_rigid/feet");
 }
 
 #ifdef PRONK_HAVE_MUJOCO

@@ -4,10 +4,12 @@
 #include "sim/mujoco/mujoco_simulator.hpp"
 
 #include <memory>
+#include <stdexcept>
 
 #include "sim/mujoco/engine/mujoco_stepper.hpp"
 #include "sim/mujoco/robot_mjcf.hpp"
 #include "sim/robot/robot_run.hpp"
+#include "sim/scene/mujoco_scene.hpp"
 
 namespace pronk::mujoco {
 
@@ -32,6 +34,11 @@ scene::Scene engine_scene(const scene::Scene& s) {
 
 robot::RobotRunResult simulate(const scene::Scene& scene_in,
                                const robot::RobotRunOptions& options) {
+  // (the loader refuses these; a map study sets its cells' model itself)
+  if (const auto r = scene::mujoco_refusal(scene_in)) {
+    throw std::invalid_argument("MuJoCo cannot run this scene: " + r->pointer + ": expected " +
+                                r->expected + ", found " + r->found);
+  }
   const scene::Scene s = engine_scene(scene_in);
   const robot::RobotModel model = robot::build_robot(s);
   auto run = std::make_unique<robot::detail::RobotRun>(s, model, options);

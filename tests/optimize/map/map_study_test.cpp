@@ -133,6 +133,12 @@ TEST_CASE("bad map studies name the file, the pointer, what was expected and fou
         0);
   d["models"] = {"pseudo_rigid", "pseudo_rigid"};
   CHECK(error_of(d).find("s.json: /models: two different models") == 0);
+  if (pronk::scene::mujoco_available()) {  // the cells' model set past the scene's check
+    d["models"] = {"pseudo_rigid", "mujoco"};
+    d["scene_overrides"].push_back("/pseudo_rigid={\"feet\": \"quasi_static\"}");
+    CHECK(error_of(d).find("/pseudo_rigid/feet: \"mass\" (MuJoCo's feet are bodies") !=
+          std::string::npos);
+  }
   d = doc;
   d["scene_overrides"].push_back("/pulse/mode=max_force");
   CHECK(error_of(d).find("/pulse/mode: \"duration\"") != std::string::npos);
