@@ -14,7 +14,7 @@
 #include "io/load/input_error.hpp"
 #include "io/load/scene_loader.hpp"
 #include "io/write/atomic_file.hpp"
-#include "io/write/plot.hpp"
+#include "io/write/figure_batch.hpp"
 #include "io/write/run_output.hpp"
 #include "io/write/simulation_output.hpp"
 #include "optimize/journal.hpp"
@@ -231,6 +231,14 @@ std::string figure_compare(const std::string& title) {
          "plot 'initial/trajectory.csv' every ::1 u 1:10 w l t 'initial', "
          "'tuned/trajectory.csv' every ::1 u 1:10 w l t 'tuned'\n"
          "unset multiplot\n";
+}
+
+// The optimization history and the initial design against the tuned one (rendered together).
+void render_study_figures(const std::string& dir, const std::string& compare_title) {
+  io::FigureBatch figures;
+  figures.add(dir, "history", figure_history());
+  figures.add(dir, "compare", figure_compare(compare_title));
+  figures.finish();
 }
 
 // The tuned design on the validation starts, the nominal robot beside the perturbed ones.
@@ -460,9 +468,7 @@ StudyOutcome run_study(const Study& st, const StudyRunOptions& opt) {
   io::write_file_atomic(o.out_dir + "/summary.md", summary_markdown(st, o));
   write_design_run(o.out_dir + "/initial", evaluator, o.initial.unit);
   write_design_run(o.out_dir + "/tuned", evaluator, o.best.unit);
-  io::render_figure(o.out_dir, "history", figure_history());
-  io::render_figure(o.out_dir, "compare",
-                    figure_compare(st.name + ": initial vs tuned (first scenario)"));
+  render_study_figures(o.out_dir, st.name + ": initial vs tuned (first scenario)");
   return o;
 }
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/write/plot.hpp"
+#include "io/write/figure_batch.hpp"
 
 namespace pronk::app::bench {
 
@@ -99,7 +99,8 @@ std::vector<Series> series_list(std::map<std::string, Series>& by) {
 }
 
 /// The work-precision diagrams of the satellite and the hopper.
-void write_work_precision_figures(const std::string& dir, const BenchResults& r) {
+void write_work_precision_figures(const std::string& dir, const BenchResults& r,
+                                  io::FigureBatch& figures) {
   auto sat_series = wp_series(r.sat, "satellite", "omega_final");
   if (r.cvode.value("available", false)) {
     std::map<std::string, Series> by;
@@ -122,12 +123,13 @@ void write_work_precision_figures(const std::string& dir, const BenchResults& r)
                      "final CoM position error [m]", wp_series(r.hop, "hopper", "final_state"))},
   };
   for (const auto& [name, script] : figs) {
-    if (!script.empty()) io::render_figure(dir, name, script);
+    if (!script.empty()) figures.add(dir, name, script);
   }
 }
 
 /// Stiffness sweep: wall time vs k.
-void write_stiffness_figure(const std::string& dir, const BenchResults& r) {
+void write_stiffness_figure(const std::string& dir, const BenchResults& r,
+                            io::FigureBatch& figures) {
   std::map<std::string, Series> by;
   for (const auto& p : r.sweep) {
     if (p.status != "completed") continue;
@@ -146,11 +148,11 @@ void write_stiffness_figure(const std::string& dir, const BenchResults& r) {
   const std::string script =
       loglog_script("satellite_stiffness", "Satellite, tol 1e-6: CPU time vs internal stiffness",
                     "internal stiffness [N/m]", "CPU time [s]", series_list(by));
-  if (!script.empty()) io::render_figure(dir, "satellite_stiffness", script);
+  if (!script.empty()) figures.add(dir, "satellite_stiffness", script);
 }
 
 /// Quad hopper drop: energy error vs cost per simulated second, pronk and MuJoCo.
-void write_drop_figure(const std::string& dir, const BenchResults& r) {
+void write_drop_figure(const std::string& dir, const BenchResults& r, io::FigureBatch& figures) {
   std::map<std::string, Series> by;
   for (const auto& x : r.drop) {
     if (x["status"] != "completed") continue;
@@ -174,11 +176,12 @@ void write_drop_figure(const std::string& dir, const BenchResults& r) {
   const std::string script = loglog_script(
       "quad_hopper_work_precision", "Quad spring hopper drop: energy error vs cost",
       "CPU time per simulated second [s/s]", "energy error / drop energy", series_list(by));
-  if (!script.empty()) io::render_figure(dir, "quad_hopper_work_precision", script);
+  if (!script.empty()) figures.add(dir, "quad_hopper_work_precision", script);
 }
 
 /// Fixed-step convergence on the hopper.
-void write_convergence_figure(const std::string& dir, const BenchResults& r) {
+void write_convergence_figure(const std::string& dir, const BenchResults& r,
+                              io::FigureBatch& figures) {
   std::map<std::string, Series> by;
   for (const auto& p : r.hop) {
     if (p.problem != "hopper" || p.h <= 0 || p.status != "completed") continue;
@@ -188,18 +191,20 @@ void write_convergence_figure(const std::string& dir, const BenchResults& r) {
   const std::string script =
       loglog_script("hopper_convergence", "Fixed-step methods on the hopper: error vs step",
                     "step h [s]", "final CoM position error [m]", series_list(by));
-  if (!script.empty()) io::render_figure(dir, "hopper_convergence", script);
+  if (!script.empty()) figures.add(dir, "hopper_convergence", script);
 }
 
 }  // namespace
 
 void write_bench_figures(const std::string& dir, const BenchResults& r) {
-  write_work_precision_figures(dir, r);
+  io::FigureBatch figures;
+  write_work_precision_figures(dir, r, figures);
   if (const std::string script = robustness_script(r.robustness); !script.empty())
-    io::render_figure(dir, "fidelity_robustness", script);
-  write_stiffness_figure(dir, r);
-  write_drop_figure(dir, r);
-  write_convergence_figure(dir, r);
+    figures.add(dir, "fidelity_robustness", script);
+  write_stiffness_figure(dir, r, figures);
+  write_drop_figure(dir, r, figures);
+  write_convergence_figure(dir, r, figures);
+  figures.finish();
 }
 
 }  // namespace pronk::app::bench

@@ -1,5 +1,6 @@
 #include "io/page/html_page.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -39,19 +40,16 @@ std::string fill_template(const std::string& html, const nlohmann::json& data) {
   if (at == std::string::npos) throw std::logic_error("page template without @PRONK_DATA@");
   // Compact, invalid UTF-8 replaced (text fields of a damaged CSV must not abort the page).
   const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  std::string safe;
-  safe.reserve(text.size() + text.size() / 64);
-  for (char c : text) {
-    if (c == '<') {
-      safe += "\\u003c";  // only inside JSON strings: the same string, and no "</script>"
-    } else {
-      safe += c;
-    }
-  }
   std::string out;
-  out.reserve(html.size() + safe.size());
+  out.reserve(html.size() + text.size() + text.size() / 64);
   out.append(html, 0, at);
-  out += safe;
+  for (size_t from = 0; from < text.size();) {
+    const size_t lt = std::min(text.find('<', from), text.size());
+    out.append(text, from, lt - from);
+    if (lt == text.size()) break;
+    out += "\\u003c";  // only inside JSON strings: the same string, and no "</script>"
+    from = lt + 1;
+  }
   out.append(html, at + std::char_traits<char>::length(kPlaceholder), std::string::npos);
   return out;
 }

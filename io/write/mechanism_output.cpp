@@ -1,12 +1,13 @@
 #include "io/write/mechanism_output.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "io/write/atomic_file.hpp"
+#include "io/write/figure_batch.hpp"
 #include "io/write/method_choice_output.hpp"
-#include "io/write/plot.hpp"
 #include "io/write/run_output.hpp"
 #include "sim/math/rotation.hpp"
 #include "sim/pseudorigid/system.hpp"
@@ -18,12 +19,16 @@ using nlohmann::json;
 
 namespace {
 
-/// Appends ",x" (or "x" first in a row); a non-finite value is a bug, never output.
+/// Appends ",x" (or "x" first in a row) as %.10g (std::to_chars with a precision prints as
+/// printf does); a non-finite value is a bug, never output.
 void put(std::string& row, double x, bool first = false) {
   if (!std::isfinite(x)) throw std::logic_error("mechanism output: non-finite value in a CSV row");
   char buf[40];
-  std::snprintf(buf, sizeof buf, first ? "%.10g" : ",%.10g", x);
-  row += buf;
+  char* at = buf;
+  if (!first) *at++ = ',';
+  const std::to_chars_result r =
+      std::to_chars(at, buf + sizeof buf, x, std::chars_format::general, 10);
+  row.append(buf, r.ptr);
 }
 
 std::vector<std::pair<std::string, pr::NodeRef>> output_nodes(const pr::Mechanism& m) {
@@ -127,7 +132,8 @@ std::string mechanism_nodes_csv(const pr::Mechanism& m, const pr::RunSummary& ru
       const Eigen::Vector3d x = sys.node_position(n, run.y[i]);
       for (int k = 0; k < 3; ++k) put(row, x[k]);
     }
-    out += row + "\n";
+    out += row;
+    out += '\n';
   }
   return out;
 }
@@ -156,7 +162,8 @@ std::string mechanism_bodies_csv(const pr::Mechanism& m, const pr::RunSummary& r
       for (int k = 0; k < 3; ++k) put(row, e[k]);
       for (int k = 0; k < 3; ++k) put(row, w[k]);
     }
-    out += row + "\n";
+    out += row;
+    out += '\n';
   }
   return out;
 }
@@ -174,7 +181,8 @@ std::string mechanism_energy_csv(const pr::RunSummary& run) {
                      e.total() + run.dissipated[i] - run.actuator_work[i]}) {
       put(row, x);
     }
-    out += row + "\n";
+    out += row;
+    out += '\n';
   }
   return out;
 }
@@ -246,9 +254,10 @@ bool write_mechanism_outputs(const std::string& dir, const LoadedMechanism& scen
   const pr::Energies& e0 = run.energies.front();
   std::snprintf(b0, sizeof b0, "b0 = %.17g\n",
                 e0.total() + run.dissipated[0] - run.actuator_work[0]);
-  bool ok = render_figure(dir, "energy", std::string(b0) + figure_energy(m.name));
-  ok &= render_figure(dir, "motion", figure_motion(m, m.name));
-  return ok;
+  FigureBatch figures;
+  figures.add(dir, "energy", std::string(b0) + figure_energy(m.name));
+  figures.add(dir, "motion", figure_motion(m, m.name));
+  return figures.finish();
 }
 
 }  // namespace pronk::io

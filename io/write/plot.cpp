@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -24,6 +26,7 @@ namespace pronk::io {
 
 namespace {
 std::once_flag g_missing_reported;
+std::atomic<bool> g_render{true};
 
 // Closes a file descriptor when it goes out of scope.
 struct Fd {
@@ -69,8 +72,16 @@ std::string read_all(int fd) {
   }
 }
 
+// True when `svg` is a whole SVG document (gnuplot ended it).
+bool plot_whole_svg(const std::string& svg) {
+  const size_t end = svg.find_last_not_of(" \t\r\n");
+  return end != std::string::npos && end >= 11 && svg.compare(0, 5, "<?xml") == 0 &&
+         svg.compare(end - 5, 6, "</svg>") == 0;
+}
+
 // Runs gnuplot in `dir` on `script` (which sends its figure to standard output) and returns
 // what it wrote; nothing when gnuplot fails or its output is not a whole SVG document.
+// Every descriptor is opened close-on-exec, so concurrent runs do not hold each other's pipes.
 std::optional<std::string> run_gnuplot(const std::string& dir, const std::string& script) {
   Fd in{script_input(script)};
   int pipe_fds[2];
@@ -94,55 +105,64 @@ std::optional<std::string> run_gnuplot(const std::string& dir, const std::string
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
-  const size_t end = svg.find_last_not_of(" \t\r\n");
-  if (end == std::string::npos || end < 11 || svg.compare(0, 5, "<?xml") != 0 ||
-      svg.compare(end - 5, 6, "</svg>") != 0) {
-    return std::nullopt;
-  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !plot_whole_svg(svg)) return std::nullopt;
   return svg;
 }
 
-}  // namespace
+// True when `path` names an executable regular file.
+bool plot_executable_file(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
+}
 
-namespace {
-std::atomic<bool> g_render{true};
 }  // namespace
 
 void set_render_figures(bool render) { g_render = render; }
 
+bool render_figures() { return g_render; }
+
 bool gnuplot_available() {
-  static const bool available = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+  // The search posix_spawnp makes: each directory of PATH (empty: the current one), or
+  // glibc's default path when PATH is unset.
+  static const bool available = [] {
+    const char* env = std::getenv("PATH");
+    const std::string path = env != nullptr ? env : "/bin:/usr/bin";
+    for (size_t begin = 0;;) {
+      const size_t end = std::min(path.find(':', begin), path.size());
+      const std::string dir = path.substr(begin, end - begin);
+      if (plot_executable_file((dir.empty() ? "." : dir) + "/gnuplot")) return true;
+      if (end == path.size()) return false;
+      begin = end + 1;
+    }
+  }();
   return available;
 }
 
-bool render_figure(const std::string& dir, const std::string& name, const std::string& script) {
-  write_file_atomic(dir + "/" + name + ".gp", script);
-  if (!g_render) {
-    std::remove((dir + "/" + name + ".svg").c_str());  // no figure rather than an earlier run's
-    return false;
-  }
-  if (!gnuplot_available()) {
-    std::call_once(g_missing_reported, [] {
-      std::cerr << "pronk: gnuplot not found: figures not rendered (the .gp scripts and CSV "
-                   "data are written; install gnuplot-nox to render them)\n";
-    });
-    return false;
-  }
+void report_missing_gnuplot() {
+  std::call_once(g_missing_reported, [] {
+    std::cerr << "pronk: gnuplot not found: figures not rendered (the .gp scripts and CSV "
+                 "data are written; install gnuplot-nox to render them)\n";
+  });
+}
+
+std::string script_to_stdout(const std::string& name, const std::string& script) {
   // gnuplot writes to standard output and pronk writes the file (atomically), so a figure is
   // whole or absent, even on a full disk; the .gp script keeps its own output file.
   const std::string output = "set output '" + name + ".svg'";
   std::string to_stdout = script;
   const size_t at = to_stdout.find(output);
   if (at == std::string::npos) {
-    throw std::logic_error("render_figure: the script of " + name + " does not " + output);
+    throw std::logic_error("figure: the script of " + name + " does not " + output);
   }
   to_stdout.replace(at, output.size(), "set output");
+  return to_stdout;
+}
+
+bool render_svg(const std::string& dir, const std::string& name, const std::string& stdout_script) {
   const std::string svg_path = dir + "/" + name + ".svg";
-  const std::optional<std::string> svg = run_gnuplot(dir, to_stdout);
+  const std::optional<std::string> svg = run_gnuplot(dir, stdout_script);
   if (!svg) {
     std::remove(svg_path.c_str());  // no figure rather than one of an earlier run
-    std::cerr << "pronk: gnuplot failed on " << dir << "/" << name << ".gp\n";
     return false;
   }
   write_file_atomic(svg_path, *svg);

@@ -5,7 +5,6 @@
 #include "io/load/robot_settings.hpp"
 #include "io/write/atomic_file.hpp"
 #include "io/write/method_choice_output.hpp"
-#include "io/write/plot.hpp"
 #include "sim/mujoco/robot_mjcf.hpp"
 
 namespace pronk::io {
@@ -159,23 +158,19 @@ std::string robot_feet_csv(const robot::RobotRunResult& r) {
   return table_csv(robot_feet_table(r));
 }
 
-WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,
-                                   const robot::RobotRunResult& r,
-                                   const reduced::RunMetrics& metrics,
-                                   const robot::FidelityDiscrepancy* pulse) {
-  WrittenOutputs w = write_run_outputs(dir, scene, r.run, metrics);
-  write_file_atomic(dir + "/summary.json",
-                    dump_checked(robot_summary_json(scene, r, metrics, pulse)));
+void write_robot_outputs(const std::string& dir, const scene::Scene& scene,
+                         const robot::RobotRunResult& r, const reduced::RunMetrics& metrics,
+                         const robot::FidelityDiscrepancy* pulse, FigureBatch& figures) {
+  write_run_files(dir, scene, r.run, robot_summary_json(scene, r, metrics, pulse), figures);
   write_file_atomic(dir + "/energy.csv", robot_energy_csv(r));
   write_file_atomic(dir + "/feet.csv", robot_feet_csv(r));
   // A MuJoCo run's robot as MuJoCo's own model, for its viewer (keyframe "initial": the start).
   if (!r.mjcf.empty()) write_file_atomic(dir + "/robot.xml", r.mjcf);
   const size_t legs = r.samples.empty() ? 0 : r.samples.front().actuator_force.size();
   const bool feet = !r.samples.empty() && !r.samples.front().normal_force.empty();
-  w.figures_rendered &= render_figure(dir, "hop_forces", figure_hop(legs, feet));
-  w.figures_rendered &= render_figure(dir, "energy", figure_energy());
-  w.figures_rendered &= render_figure(dir, "path3d", figure_path());
-  return w;
+  figures.add(dir, "hop_forces", figure_hop(legs, feet));
+  figures.add(dir, "energy", figure_energy());
+  figures.add(dir, "path3d", figure_path());
 }
 
 }  // namespace pronk::io

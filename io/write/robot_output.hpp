@@ -29,9 +29,10 @@ Table robot_feet_table(const robot::RobotRunResult& r);
 std::string robot_energy_csv(const robot::RobotRunResult& r);
 std::string robot_feet_csv(const robot::RobotRunResult& r);
 
-WrittenOutputs write_robot_outputs(const std::string& dir, const scene::Scene& scene,
-                                   const robot::RobotRunResult& r,
-                                   const reduced::RunMetrics& metrics,
-                                   const robot::FidelityDiscrepancy* pulse = nullptr);
+/// The reduced run's files (write_run_files) with the full model's summary.json, and
+/// energy.csv, feet.csv, a MuJoCo run's robot.xml; the figures added to `figures`.
+void write_robot_outputs(const std::string& dir, const scene::Scene& scene,
+                         const robot::RobotRunResult& r, const reduced::RunMetrics& metrics,
+                         const robot::FidelityDiscrepancy* pulse, FigureBatch& figures);
 
 }  // namespace pronk::io

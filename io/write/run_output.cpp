@@ -3,11 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "io/write/atomic_file.hpp"
 #include "io/build_info.hpp"
-#include "io/write/plot.hpp"
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
+#include "io/write/figure_batch.hpp"
 
 namespace pronk::io {
 
@@ -232,26 +232,28 @@ std::string figure_leg_force() {
 }
 }  // namespace
 
-WrittenOutputs write_run_outputs(const std::string& dir, const scene::Scene& scene,
-                                 const reduced::RunResult& run,
-                                 const reduced::RunMetrics& metrics) {
+void write_run_outputs(const std::string& dir, const scene::Scene& scene,
+                       const reduced::RunResult& run, const reduced::RunMetrics& metrics,
+                       FigureBatch& figures) {
+  write_run_files(dir, scene, run, run_summary_json(scene, run, metrics), figures);
+}
+
+void write_run_files(const std::string& dir, const scene::Scene& scene,
+                     const reduced::RunResult& run, const nlohmann::json& summary,
+                     FigureBatch& figures) {
   make_directories(dir);
   write_file_atomic(dir + "/scene.resolved.json", dump_checked(scene_to_json(scene)));
   write_file_atomic(dir + "/trajectory.csv", trajectory_csv(run));
   write_file_atomic(dir + "/strides.csv", strides_csv(run));
-  write_file_atomic(dir + "/summary.json", dump_checked(run_summary_json(scene, run, metrics)));
-  WrittenOutputs w;
+  write_file_atomic(dir + "/summary.json", dump_checked(summary));
   const std::string title = scene.name + " (" + std::string(scene::to_string(scene.model)) + ")";
-  w.figures_rendered = render_figure(dir, "motion", figure_motion(title));
+  figures.add(dir, "motion", figure_motion(title));
   if (run.strides.size() >= 2) {
-    w.figures_rendered &= render_figure(dir, "strides", figure_strides());
+    figures.add(dir, "strides", figure_strides());
   } else {
     write_file_atomic(dir + "/strides.gp", figure_strides());  // nothing to plot yet
   }
-  if (scene.model == scene::ModelKind::kPulse) {
-    w.figures_rendered &= render_figure(dir, "leg_force", figure_leg_force());
-  }
-  return w;
+  if (scene.model == scene::ModelKind::kPulse) figures.add(dir, "leg_force", figure_leg_force());
 }
 
 }  // namespace pronk::io

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/write/figure_batch.hpp"
 #include "io/write/table.hpp"
 #include "sim/reduced/metrics.hpp"
 #include "sim/reduced/run_result.hpp"
@@ -28,9 +29,16 @@ struct WrittenOutputs {
   std::string page;  ///< view.html's path; empty when the page templates are absent
 };
 
-/// Writes every output file atomically into `dir` (created if missing).
-WrittenOutputs write_run_outputs(const std::string& dir, const scene::Scene& scene,
-                                 const reduced::RunResult& run, const reduced::RunMetrics& metrics);
+/// Writes every data file and figure script atomically into `dir` (created if missing) and
+/// adds the figures to `figures`, for the caller to render once its files are all written.
+void write_run_outputs(const std::string& dir, const scene::Scene& scene,
+                       const reduced::RunResult& run, const reduced::RunMetrics& metrics,
+                       FigureBatch& figures);
+
+/// The same files with `summary` as summary.json (a full-model run's, written once).
+void write_run_files(const std::string& dir, const scene::Scene& scene,
+                     const reduced::RunResult& run, const nlohmann::json& summary,
+                     FigureBatch& figures);
 
 /// Gnuplot lines for the z axis of a 3-D CoM path from trajectory.csv (column 4): from the
 /// ground, at most four round ticks, the label beside the axis.

@@ -27,12 +27,14 @@ nlohmann::json simulation_summary_json(const scene::Scene& scene, const RunResul
 WrittenOutputs write_simulation_outputs(const std::string& dir, const scene::Scene& scene,
                                         const RunResult& r, const reduced::RunMetrics& metrics) {
   WrittenOutputs w;
+  FigureBatch figures;
   if (!r.full_model()) {
-    w = write_run_outputs(dir, scene, r.run, metrics);
+    write_run_outputs(dir, scene, r.run, metrics, figures);
   } else {
     const robot::FidelityDiscrepancy fd = pulse_discrepancy(scene, r);
-    w = write_robot_outputs(dir, scene, r, metrics, &fd);
+    write_robot_outputs(dir, scene, r, metrics, &fd, figures);
   }
+  w.figures_rendered = figures.finish();  // every figure at once, at most one per core
   // view.html from the files just written: the page shows what is on disk.
   w.page = page::write_directory_page(dir);
   return w;

@@ -17,7 +17,7 @@
 #include "io/load/input_error.hpp"
 #include "io/load/json_reader.hpp"
 #include "io/write/atomic_file.hpp"
-#include "io/write/plot.hpp"
+#include "io/write/figure_batch.hpp"
 #include "optimize/journal.hpp"
 #include "optimize/map/map_journal.hpp"
 #include "optimize/map/map_output.hpp"
@@ -250,7 +250,17 @@ void write_map_outputs(const MapStudy& st, const MapRunOptions& options,
   out.summary = summary_json(st, out.summaries, out.boundaries);
   out.simulations = out.summary["totals"]["simulations"].get<long>();
   // The files are independent: written at once, so their fsyncs and the two
-  // gnuplot runs overlap (the serial tail of the map, which no worker shortens).
+  // gnuplot runs (their data inline in the scripts) overlap (the serial tail of the map,
+  // which no worker shortens).
+  io::FigureBatch figures;
+  for (const char* what : {"fraction", "disagreement"}) {
+    const std::string script = heatmap_script(st, out.summaries, out.boundaries, what);
+    if (options.figures)
+      figures.add(out.out_dir, what, script);
+    else
+      io::write_file_atomic(out.out_dir + "/" + what + ".gp", script);
+  }
+  figures.start();
   std::vector<std::future<void>> writes;
   auto write = [&writes](std::function<void()> job) {
     writes.push_back(std::async(std::launch::async, std::move(job)));
@@ -262,16 +272,8 @@ void write_map_outputs(const MapStudy& st, const MapRunOptions& options,
                           boundary_csv(st, out.summaries, out.boundaries));
   });
   write([&] { io::write_file_atomic(out.out_dir + "/summary.json", out.summary.dump(2) + "\n"); });
-  for (const char* what : {"fraction", "disagreement"}) {
-    write([&, what] {
-      const std::string script = heatmap_script(st, out.summaries, out.boundaries, what);
-      if (options.figures)
-        io::render_figure(out.out_dir, what, script);
-      else
-        io::write_file_atomic(out.out_dir + "/" + what + ".gp", script);
-    });
-  }
   for (auto& w : writes) w.get();  // the first failure is rethrown (after all ended)
+  figures.finish();
 }
 
 }  // namespace

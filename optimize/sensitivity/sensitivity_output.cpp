@@ -11,7 +11,7 @@
 
 #include "io/load/input_error.hpp"
 #include "io/write/atomic_file.hpp"
-#include "io/write/plot.hpp"
+#include "io/write/figure_batch.hpp"
 #include "io/write/table.hpp"
 
 namespace pronk::optimize::sensitivity {
@@ -163,7 +163,8 @@ std::vector<size_t> by_span(const DesignSensitivity& s, size_t i) {
 
 // Tornado: bars from the design's value to the output with the input at each end of its
 // range, the largest at the top.
-void tornado_figure(const DesignSensitivity& s, const std::string& dir, size_t i) {
+void tornado_figure(const DesignSensitivity& s, const std::string& dir, size_t i,
+                    io::FigureBatch& figures) {
   const std::vector<size_t> order = by_span(s, i);
   std::string data = "# input y f0 f_lower f_upper\n";
   const size_t n = order.size();
@@ -192,11 +193,12 @@ void tornado_figure(const DesignSensitivity& s, const std::string& dir, size_t i
         "ytic(1) with boxxyerror lc rgb '#4477aa' title 'input at its lower end', \\\n"
      << "     '' using (($3+$5)/2):2:($3<$5?$3:$5):($3<$5?$5:$3):($2):($2+0.38) with boxxyerror "
         "lc rgb '#cc6677' title 'input at its upper end'\n";
-  io::render_figure(dir, "tornado", gp.str());
+  figures.add(dir, "tornado", gp.str());
 }
 
 // Sobol bars: first-order and total indices of output i with their intervals.
-void sobol_figure(const DesignSensitivity& s, const std::string& dir, size_t i) {
+void sobol_figure(const DesignSensitivity& s, const std::string& dir, size_t i,
+                  io::FigureBatch& figures) {
   const SobolIndices& x = s.sobol->outputs[i];
   const size_t n = s.inputs.size();
   std::string data = "# input x S1 S1_lo S1_hi ST ST_lo ST_hi\n";
@@ -226,7 +228,7 @@ void sobol_figure(const DesignSensitivity& s, const std::string& dir, size_t i) 
         "title 'total ST', \\\n"
      << "     '' using ($2-0.19):3:4:5 with yerrorbars lc rgb 'black' pt 0 notitle, \\\n"
      << "     '' using ($2+0.19):6:7:8 with yerrorbars lc rgb 'black' pt 0 notitle\n";
-  io::render_figure(dir, "sobol", gp.str());
+  figures.add(dir, "sobol", gp.str());
 }
 
 std::string summary_md(const DesignSensitivity& s, size_t c) {
@@ -417,8 +419,10 @@ void write_sensitivity(const DesignSensitivity& s, const std::string& dir,
   io::write_file_atomic(dir + "/sobol.csv", sobol_csv(s));
   io::write_file_atomic(dir + "/tornado.csv", tornado_csv(s));
   io::write_file_atomic(dir + "/summary.md", summary_md(s, c));
-  tornado_figure(s, dir, c);
-  if (s.sobol) sobol_figure(s, dir, c);
+  io::FigureBatch figures;
+  tornado_figure(s, dir, c, figures);
+  if (s.sobol) sobol_figure(s, dir, c, figures);
+  figures.finish();  // the report holds the figures
   io::write_file_atomic(dir + "/report.html",
                         report_html(summary_md(s, c), dir, "Sensitivity of " + s.study));
 }

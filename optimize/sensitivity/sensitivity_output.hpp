@@ -18,7 +18,7 @@ namespace pronk::optimize::sensitivity {
 
 /// Writes the files into `dir` (created). `chart` names the output the charts show (one of
 /// s.outputs). Throws std::runtime_error on I/O failure; a missing gnuplot only leaves the
-/// .gp scripts (io::render_figure).
+/// .gp scripts (io::FigureBatch).
 void write_sensitivity(const DesignSensitivity& s, const std::string& dir,
                        const std::string& chart);
 

@@ -2,10 +2,16 @@
 // number unless text is allowed), the sampling of long tables, and the template filling
 // (the data cannot end the script element).
 #include <catch2/catch.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "io/load/input_error.hpp"
 #include "io/page/csv_table.hpp"
@@ -48,6 +54,81 @@ TEST_CASE("CSV tables of a page are read strictly", "[page]") {
   const page::CsvTable tt = page::read_csv_table(text, true);
   CHECK(tt.data[1][0].is_null());
   CHECK(tt.data[0][1] == "ok");
+}
+
+TEST_CASE("The page reads numbers as strtod does and rounds them as printf does", "[page]") {
+  // The fields strtod reads whole and finite are numbers with strtod's bits; the others
+  // (out of range, subnormal, not a number) are text. CRLF line ends, a blank line and a
+  // last line without its end are read as before.
+  const std::vector<std::string> fields = {"0.10000000000000001",
+                                           "-0",
+                                           "1.2345678901234567e-05",
+                                           " 1.5",
+                                           "+2",
+                                           "0x10",
+                                           "1e400",
+                                           "1e-310",
+                                           "2.2250738585072014e-308",
+                                           "1.7976931348623157e308",
+                                           "-nan",
+                                           "inf",
+                                           "1.",
+                                           ".5",
+                                           "1e",
+                                           "7 ",
+                                           "3.0000000000000004",
+                                           "abc"};
+  std::string text = "t,x\r\n";
+  for (size_t i = 0; i < fields.size(); ++i) {
+    text += std::to_string(i) + "," + fields[i] + (i == 3 ? "\r\n\n" : "\r\n");
+  }
+  text += "99,4";  // no line end
+  const page::CsvTable t =
+      page::read_csv_table(pagedata_write("pronk_page_strtod.csv", text), true);
+  REQUIRE(t.columns == std::vector<std::string>{"t", "x"});
+  REQUIRE(t.rows() == static_cast<long>(fields.size()) + 1);
+  for (size_t i = 0; i < fields.size(); ++i) {
+    INFO(fields[i]);
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(fields[i].c_str(), &end);
+    const bool number = *end == '\0' && errno != ERANGE && std::isfinite(v);
+    const nlohmann::json& got = t.data[1][i];
+    REQUIRE(got.is_number() == number);
+    if (number) {
+      const double g = got.get<double>();
+      CHECK(std::memcmp(&g, &v, sizeof v) == 0);
+    } else {
+      CHECK(got == fields[i]);
+    }
+  }
+  CHECK(t.data[1][fields.size()].get<double>() == 4.0);
+  CHECK_THROWS_WITH(
+      page::read_csv_table(pagedata_write("pronk_page_blank.csv", "t,x\n0,1\n\n1,x\n")),
+      Contains("line 4, column x"));
+
+  // Rounding to 6 significant digits (time: 9) is printf's %.*g read back with strtod.
+  page::CsvTable r;
+  r.columns = {"t", "x"};
+  r.data = {nlohmann::json::array(), nlohmann::json::array()};
+  std::vector<double> values = {1e-300, 5e-324, -0.0, 1.0 / 3.0, 123456.5, 999999.5, 1e300};
+  for (int i = 0; i < 2000; ++i)
+    values.push_back(std::ldexp(1.0 + i * 0.618033988749895, i % 200 - 100) * (i % 2 ? -1 : 1));
+  for (double v : values) {
+    r.data[0].push_back(v);
+    r.data[1].push_back(v);
+  }
+  const nlohmann::json j = page::sampled_table_json(r, 1L << 40);
+  for (size_t i = 0; i < values.size(); ++i) {
+    for (int c : {0, 1}) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.*g", c == 0 ? 9 : 6, values[i]);
+      const double expected = values[i] == 0.0 ? 0.0 : std::strtod(buf, nullptr);
+      const double got = j["data"][c][i].get<double>();
+      INFO(buf);
+      CHECK(std::memcmp(&got, &expected, sizeof got) == 0);
+    }
+  }
 }
 
 TEST_CASE("Long tables are thinned to the page's budget, keeping the last row", "[page]") {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -16,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "io/write/atomic_file.hpp"
 #include "io/load/scene_loader.hpp"
+#include "io/write/atomic_file.hpp"
 #include "sim/reduced/simulator.hpp"
 
 using Catch::Matchers::Contains;
@@ -242,6 +243,46 @@ TEST_CASE("CSV rows have exactly the header's columns and exact values", "[io][o
   CHECK(check_rectangular(io::strides_csv(empty), 33) == 0);
 }
 
+TEST_CASE("CSV numbers are printf's %.17g, bit for bit", "[io][output]") {
+  // table_csv and exact_number format with std::to_chars; the files must stay what
+  // printf wrote: the extremes, signed zeros, subnormals, non-finite values, and a sweep.
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                0.1,
+                                1.0 / 3.0,
+                                1e-20,
+                                14.715,
+                                1e16,
+                                1e17,
+                                -1e300,
+                                5e-324,
+                                1e-310,
+                                kNaN,
+                                -kNaN,
+                                kInf,
+                                -kInf,
+                                std::numeric_limits<double>::max(),
+                                2.2250738585072014e-308};
+  for (int e = -30; e <= 30; ++e) {
+    for (double m : {1.0, 1.5, 2.0 / 3.0, 9.999999999999999, 123456.789}) {
+      values.push_back(std::ldexp(m, e));
+      values.push_back(-m * std::pow(10.0, e));
+    }
+  }
+  io::Table t;
+  t.columns = {"v"};
+  std::string expected = "v\n";
+  for (double v : values) {
+    t.add_row({v});
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    INFO(buf);
+    CHECK(io::exact_number(v) == buf);
+    expected += std::string(buf) + "\n";
+  }
+  CHECK(io::table_csv(t) == expected);
+}
+
 TEST_CASE("CSV and JSON outputs of a simulated run", "[io][output]") {
   const auto scene = short_scene("case2_legged_impulse.json", 1.0);
   const reduced::RunResult run = reduced::simulate(scene);
@@ -256,7 +297,9 @@ TEST_CASE("CSV and JSON outputs of a simulated run", "[io][output]") {
 
   ScratchDir dir;
   const std::string out = dir.path + "/nested/run";
-  io::write_run_outputs(out, scene, run, m);
+  io::FigureBatch figures;
+  io::write_run_outputs(out, scene, run, m, figures);
+  figures.finish();
   for (const std::string& f : names_in(out)) {
     INFO(f);
     CHECK(f.find(".tmp") == std::string::npos);
