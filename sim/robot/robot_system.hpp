@@ -186,8 +186,8 @@ class RobotSystem final : public ode::MechanicalSystem {
   void drop_memos() const { fb_memo_ = st_memo_ = false; }
   /// Landed leg i's slot normals at y (world).
   Slot slot_world(size_t i, const ode::Vec& y) const;
-  /// Leg i's slot normals (body frame; zero when absent) for its current direction.
-  std::array<Eigen::Vector3d, 2> slot_of(size_t i) const;
+  /// Body-frame slot normals (zero when absent: slot_normals) turned to the world by R.
+  static Slot to_world(const std::array<Eigen::Vector3d, 2>& body, const Eigen::Matrix3d& R);
   /// Adds the landed quasi-static legs' springs and slots (and, with `damped`, their dampers)
   /// to the body's momentum rates; writes the feet's state rates (`rates`: the creep and
   /// relaxation; otherwise 0).

@@ -51,13 +51,16 @@ ode::Vec RobotSystem::initial_state() const {
   return y;
 }
 
-RobotSystem::Slot RobotSystem::slot_world(size_t i, const ode::Vec& y) const {
-  const Matrix3d& R = sys_.frames(y)[model_.body].rotation;
+RobotSystem::Slot RobotSystem::to_world(const std::array<Vector3d, 2>& body, const Matrix3d& R) {
   Slot sl;
-  for (const Vector3d& n : slot_[i]) {
+  for (const Vector3d& n : body) {
     if (n.squaredNorm() > 0.0) sl.n[static_cast<size_t>(sl.count++)] = R * n;
   }
   return sl;
+}
+
+RobotSystem::Slot RobotSystem::slot_world(size_t i, const ode::Vec& y) const {
+  return to_world(slot_[i], sys_.frames(y)[model_.body].rotation);
 }
 
 Vector3d RobotSystem::foot_position(size_t i, const ode::Vec& y) const {
@@ -351,10 +354,6 @@ Vector3d RobotSystem::ground_reaction(size_t i, const ode::Vec& y, bool fb) cons
   return reaction(st, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i));
 }
 
-std::array<Vector3d, 2> RobotSystem::slot_of(size_t i) const {
-  return slot_normals(dir_[i], locked_);
-}
-
 double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
   if (pinned_[i]) return ground_reaction(i, y).z();
   const Vector3d f = foot_position(i, y);
@@ -365,11 +364,7 @@ double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
   // no band between them a foot resting unloaded switches at every step).
   feedback(y);
   const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
-  const Matrix3d& R = sys_.frames(y)[model_.body].rotation;
-  Slot sl;
-  for (const Vector3d& n : slot_of(i)) {
-    if (n.squaredNorm() > 0.0) sl.n[static_cast<size_t>(sl.count++)] = R * n;
-  }
+  const Slot sl = to_world(slot_normals(dir_[i], locked_), sys_.frames(y)[model_.body].rotation);
   const Stance st = stance(i, f.head<2>(), hip, sl);
   const double pressed =
       reaction(st, sys_.node_velocity(model_.hip_node[i], y), applied_actuator(i)).z();
@@ -379,7 +374,7 @@ double RobotSystem::foot_event(size_t i, const ode::Vec& y) const {
 void RobotSystem::land_foot(size_t i, ode::Vec& y) {
   const Vector3d f = foot_position(i, y);
   y.segment<2>(foot_state(i)) = f.head<2>();
-  slot_[i] = slot_of(i);
+  slot_[i] = slot_normals(dir_[i], locked_);
   pinned_[i] = true;
   free_[i] = !locked_;  // a free hip turns in its slot; a locked one keeps the leg's line
   drop_memos();
