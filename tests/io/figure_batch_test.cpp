@@ -3,8 +3,6 @@
 // --no-figures honoured, and a batch left unfinished keeping no earlier run's figure.
 #include "io/write/figure_batch.hpp"
 
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +12,7 @@
 #include <string>
 
 #include "io/write/plot.hpp"
+#include "tests/cli/cli_support.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
@@ -22,28 +21,11 @@ namespace io = pronk::io;
 namespace {
 
 /// A fresh directory under /tmp, removed at scope exit.
-struct FigureDir {
-  std::string path;
-  FigureDir() {
-    char tmpl[] = "/tmp/pronk_figure_test_XXXXXX";
-    const char* p = ::mkdtemp(tmpl);
-    REQUIRE(p != nullptr);
-    path = p;
-  }
-  ~FigureDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  FigureDir(const FigureDir&) = delete;
-  FigureDir& operator=(const FigureDir&) = delete;
+struct FigureDir : cli_support::TempDir {
+  FigureDir() : cli_support::TempDir("figure") {}
 };
 
-std::string figure_slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
-}
+using cli_support::slurp;
 
 /// A small figure `name` with its data inline (curve k).
 std::string figure_script(const std::string& name, int k) {
@@ -85,18 +67,18 @@ TEST_CASE("A figure batch writes each script when added and renders every figure
     io::FigureBatch one;
     one.add(dir.path, "alone", figure_script("alone", 3));
     REQUIRE(one.finish());
-    alone = figure_slurp(dir.path + "/alone.svg");
+    alone = slurp(dir.path + "/alone.svg");
   }
   io::FigureBatch figures;
   for (int k = 0; k < n; ++k) {
     const std::string name = "f" + std::to_string(k);
     figures.add(dir.path, name, figure_script(name, k));
-    CHECK(figure_slurp(dir.path + "/" + name + ".gp") == figure_script(name, k));
+    CHECK(slurp(dir.path + "/" + name + ".gp") == figure_script(name, k));
     CHECK_FALSE(fs::exists(dir.path + "/" + name + ".svg"));  // rendered on finish
   }
   CHECK(figures.finish());
   for (int k = 0; k < n; ++k) {
-    const std::string svg = figure_slurp(dir.path + "/f" + std::to_string(k) + ".svg");
+    const std::string svg = slurp(dir.path + "/f" + std::to_string(k) + ".svg");
     CHECK(svg.rfind("<?xml", 0) == 0);
     CHECK_THAT(svg, Contains("</svg>") && Contains("curve " + std::to_string(k)));
   }
@@ -107,7 +89,7 @@ TEST_CASE("A figure batch writes each script when added and renders every figure
     again.add(dir.path, "g" + std::to_string(k), figure_script("g" + std::to_string(k), k));
   }
   CHECK(again.finish());
-  CHECK(figure_slurp(dir.path + "/alone.svg") == alone);
+  CHECK(slurp(dir.path + "/alone.svg") == alone);
   for (const auto& e : fs::directory_iterator(dir.path)) {
     CHECK(e.path().string().find(".tmp") == std::string::npos);
   }

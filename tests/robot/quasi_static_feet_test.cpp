@@ -29,9 +29,14 @@ namespace {
 const std::string kQuasi = "/pseudo_rigid/feet=\"quasi_static\"";
 const std::string kRigid = "/pseudo_rigid/body=\"rigid\"";
 
-scene::Scene load(const std::vector<std::string>& set) {
-  return io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json", set);
+/// A shipped scene (studies/scenes/<name>.json) with `set` applied.
+scene::Scene load_shipped(const std::string& name, const std::vector<std::string>& set) {
+  std::string path = PRONK_SOURCE_DIR;  // (built with +=: GCC 12 warns falsely on "a" + b)
+  path += "/studies/scenes/" + name + ".json";
+  return io::load_scene(path, set);
 }
+
+scene::Scene load(const std::vector<std::string>& set) { return load_shipped("pr_running", set); }
 
 /// The level body at CoM height z, at rest, every foot pinned on the ground under its hip.
 ode::Vec standing(const robot::RobotModel& m, robot::RobotSystem& sys, double z) {
@@ -64,8 +69,7 @@ TEST_CASE("quasi-static feet: the setting is read, refused where it cannot act, 
   CHECK(std::find(u1.begin(), u1.end(), "/pseudo_rigid/foot_mass") == u1.end());
   CHECK(std::find(u1.begin(), u1.end(), "/pseudo_rigid/feet") == u1.end());
   // Force legs have no feet: the setting is unused there (case 5).
-  const auto u2 = io::unused_settings(io::load_scene(
-      std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case5_pr_hop_height.json", {kQuasi}));
+  const auto u2 = io::unused_settings(load_shipped("case5_pr_hop_height", {kQuasi}));
   CHECK(std::find(u2.begin(), u2.end(), "/pseudo_rigid/feet") != u2.end());
   // Written back only when not the default (recorded scenes keep their hash); round-trips.
   CHECK(io::scene_to_json(q)["pseudo_rigid"]["feet"] == "quasi_static");
@@ -390,11 +394,11 @@ TEST_CASE("quasi-static feet: case 6 bounce by bounce against the 1 g feet", "[r
   const std::string body =
       GENERATE(std::string(kRigid), std::string("/pseudo_rigid/body=\"four_masses\""));
   INFO(body);
+  const std::string fine_samples = "/simulation/sample_interval=0.0002";
   auto case6 = [&](std::vector<std::string> set) {
     set.push_back(body);
-    set.push_back("/simulation/sample_interval=0.0002");
-    return robot::simulate(
-        io::load_scene(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/case6_pr_drop.json", set));
+    set.push_back(fine_samples);
+    return robot::simulate(load_shipped("case6_pr_drop", set));
   };
   const robot::RobotRunResult ref =
       case6({"/pseudo_rigid/solver={\"method\":\"verlet\",\"h_fixed\":1.5e-5}"});
