@@ -187,6 +187,7 @@ void parse_pseudo_rigid(JsonReader r, const json& node, scene::PseudoRigid* out,
     so.rtol = o.positive_or("rtol", so.rtol);
     so.atol = o.positive_or("atol", so.atol);
     so.h_fixed = o.positive_or("h_fixed", so.h_fixed);
+    so.h_flight = o.number_or("h_flight", so.h_flight, 0.0, 1.0);
     so.h_max = o.positive_or("h_max", so.h_max);
     so.h_min = o.number_or("h_min", so.h_min, 0.0, 1.0);
     so.h_initial = o.number_or("h_initial", so.h_initial, 0.0, 1e3);
@@ -261,6 +262,7 @@ json pseudo_rigid_to_json(const scene::PseudoRigid& p) {
   if (so.event_restart != ode::EventRestart::kInterpolant) {
     j["solver"]["event_restart"] = std::string(ode::to_string(so.event_restart));
   }
+  if (so.h_flight > 0.0) j["solver"]["h_flight"] = so.h_flight;
   // "auto" stays "auto" in the resolved scene: the choice depends on the run. The settings
   // auto chooses are left out (the reader refuses them under auto).
   if (p.solver_auto) {
@@ -360,6 +362,14 @@ std::vector<std::string> unused_settings(const scene::Scene& s) {
       } else if (s.pseudo_rigid.solver.method != ode::Method::kVerlet) {
         out.push_back("/pseudo_rigid/solver/energy_tol");     // verlet's energy budget
         out.push_back("/pseudo_rigid/solver/event_restart");  // verlet's restart at events
+      }
+      // Verlet's flight step: only quasi-static feet have a flight without stiff modes
+      // (listed when set: the scenes recorded before it existed keep their lists).
+      if (s.pseudo_rigid.solver.h_flight > 0.0 &&
+          (s.pseudo_rigid.solver_auto || s.pseudo_rigid.solver.method != ode::Method::kVerlet ||
+           s.pseudo_rigid.feet != scene::PseudoRigid::Feet::kQuasiStatic ||
+           s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce)) {
+        out.push_back("/pseudo_rigid/solver/h_flight");
       }
       if (s.pseudo_rigid.legs == scene::PseudoRigid::Legs::kForce) {
         for (const char* k :

@@ -18,6 +18,7 @@ void add_method_choice(const pseudorigid::MethodChoice& c, double drift_relative
                       {"accuracy_met", drift_relative <= c.accuracy}};
   if (c.method == ode::Method::kVerlet) {
     a["h_fixed_s"] = c.h_fixed;
+    if (c.h_flight > 0.0) a["h_flight_s"] = c.h_flight;
     a["energy_tol"] = c.energy_tol;
   } else {
     a["rtol"] = c.rtol;

@@ -68,6 +68,11 @@ struct SolverOptions {
   double rtol = 1e-9;     ///< relative tolerance (adaptive methods)
   double atol = 1e-9;     ///< absolute tolerance (adaptive methods)
   double h_fixed = 1e-3;  ///< step [s] of the fixed-step methods
+  /// verlet: the step [s] of the segments a run's model calls flight (its stiff modes all
+  /// off: massless feet in the air leave the body on gravity alone; run::HybridModel::
+  /// fixed_step), h_fixed in the others; 0 (default) takes h_fixed throughout. Method
+  /// "auto" sets it for quasi-static feet.
+  double h_flight = 0.0;
   /// verlet only: 0 (default) takes every step at h_fixed. A positive budget [J] makes
   /// h_fixed the step of the output grid, each taken as 2^j equal sub-steps so that Verlet's
   /// bounded energy term T_net (VerletInfo::verlet_term) stays within the budget; beyond

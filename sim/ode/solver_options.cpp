@@ -118,6 +118,9 @@ bool SolverOptions::validate(std::string* error) const {
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;
   if (!positive_finite(error, "h_fixed", h_fixed)) return false;
+  if (!(h_flight >= 0.0) || !std::isfinite(h_flight)) {
+    return fail(error, "h_flight", h_flight, "must be >= 0 and finite");
+  }
   if (!(verlet_energy_budget >= 0.0) || !std::isfinite(verlet_energy_budget)) {
     return fail(error, "verlet_energy_budget", verlet_energy_budget, "must be >= 0 and finite");
   }

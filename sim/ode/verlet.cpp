@@ -78,7 +78,10 @@ class VerletStepper final : public Stepper, public VerletInfo {
     remaining_ = 0;  // a new grid step starts here; the planned sub-steps are kept
     y_ = y;
     y_prev_ = y;
+    opened_relaxed_ = false;
     forces(sys, t_, y_, f_);
+    kick_ = y;
+    kick_prev_ = y;
     f_prev_ = f_;
     // The dissipative force at the restart point: the mean one of the next opening half step
     // (it has no closing one), so a foot held at the start starts with T_net near zero. The
@@ -168,6 +171,9 @@ class VerletStepper final : public Stepper, public VerletInfo {
 
   bool can_retake() const override { return true; }
 
+  /// The grid step from the next reset() on (ode::set_verlet_step).
+  void set_grid_step(double h) { h_fixed_ = h; }
+
   /// The last step again from its start, cut short at t (or stretched up to its first length):
   /// one step of t - t_prev(), booked as step() books it, from the bookkeeping the step started
   /// with. The grid restarts at the reset() that follows.
@@ -182,6 +188,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     if (metric_) net_terms(sys, f_new_, fd_new_, &k_net, &k_gap);
     y_ = y_prev_;
     f_ = f_prev_;
+    kick_ = kick_prev_;
     fd_ = fd_prev_;
     t_ = t_prev_;
     k_net_ = start_.k_net;
@@ -218,10 +225,13 @@ class VerletStepper final : public Stepper, public VerletInfo {
     y_.swap(y_new_);
     f_prev_.swap(f_);
     f_.swap(f_new_);
+    kick_prev_.swap(kick_);
+    kick_.swap(kick_new_);
     fd_prev_.swap(fd_);
     fd_.swap(fd_new_);
     t_prev_ = t_;
     t_ = t_new_;
+    opened_relaxed_ = relaxed_;
     dissipated_ += dissipated;
     k_net_ = k_net;
     k_gap_ = k_gap;
@@ -253,6 +263,8 @@ class VerletStepper final : public Stepper, public VerletInfo {
   double booked_dissipation() const override { return dissipated_; }
   double verlet_term() const override { return 0.25 * h_last_ * h_last_ * k_net_; }
   double switching_offset() const override { return offset_; }
+  const Vec& opening_state() const override { return opened_relaxed_ ? y_start_ : kick_prev_; }
+  const Vec& closing_state() const override { return kick_; }
 
  private:
   /// One Verlet step of size h from (t0, y0) with the kicks' force f0 there to t_new into
@@ -269,6 +281,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     // force times the step's displacement, an error of first order in h.
     const Vec* ys = &y0;
     const Vec* fs = &f0;
+    relaxed_ = false;
     if (relax_) {
       y_start_ = y0;
       bool moved = false;
@@ -278,6 +291,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
         ++counters_.rhs_evaluations;
         ys = &y_start_;
         fs = &f_start_;
+        relaxed_ = true;
       }
     }
     // Kick: p_half = p + h/2 F(q, p); positions unchanged. With the split, the dissipative
@@ -296,6 +310,7 @@ class VerletStepper final : public Stepper, public VerletInfo {
     p_half_ = y_new_;
     y_new_.noalias() += (0.5 * h) * mask_.cwiseProduct(*fs);
     forces(sys, t_new, y_new_, f_new_);
+    kick_new_ = y_new_;  // (the point f_new_ is read at: the predicted momentum)
     ++counters_.rhs_evaluations;
     y_new_.noalias() = p_half_ + (0.5 * h) * mask_.cwiseProduct(f_new_);
     if (split_) {
@@ -441,22 +456,25 @@ class VerletStepper final : public Stepper, public VerletInfo {
   bool last_ = false;          ///< the current grid step ends at the caller's t_limit
   long steps_since_base_ = 0;  ///< grid steps taken on the current grid
   Vec y_, y_prev_, y_new_;
-  Vec f_, f_prev_, f_new_;         ///< f at t_, t_prev_ and the new point
-  Vec fd_, fd_new_;                ///< mean dissipative force of the closing half step [N]
-  Vec fd_prev_;                    ///< fd_ at t_prev_ [N]
-  mutable Vec slope_a_, slope_b_;  ///< dense(): the momentum slopes with the dissipation
-  Vec p_half_;                     ///< state after the drift (momenta at the half step)
-  Vec y_ref_;                      ///< split: the state before the closing dissipative update
-  Vec y_start_, f_start_;          ///< relax: the step's start after the relaxation, its forces
-  Vec work_;                       ///< scratch: the net force
-  Vec mask_;                       ///< 1 on momentum states, 0 on positions
-  Vec q_mask_;                     ///< 1 - mask_
-  bool split_ = false;             ///< the system's dissipation split is applied
-  bool drift_ = false;             ///< the system drifts its positions itself
-  bool relax_ = false;             ///< the system relaxes first-order states at the step start
-  int block_ = 1;                  ///< momentum entries per rotation block
-  bool metric_ = false;            ///< T_net is tracked (a metric, and a split or a budget)
-  double k_net_ = 0.0;             ///< kinetic energy of the held force at t_ [N^2/kg]
+  Vec f_, f_prev_, f_new_;           ///< f at t_, t_prev_ and the new point
+  Vec fd_, fd_new_;                  ///< mean dissipative force of the closing half step [N]
+  Vec fd_prev_;                      ///< fd_ at t_prev_ [N]
+  mutable Vec slope_a_, slope_b_;    ///< dense(): the momentum slopes with the dissipation
+  Vec kick_, kick_prev_, kick_new_;  ///< the points f_, f_prev_, f_new_ were read at
+  Vec p_half_;                       ///< state after the drift (momenta at the half step)
+  Vec y_ref_;                        ///< split: the state before the closing dissipative update
+  Vec y_start_, f_start_;            ///< relax: the step's start after the relaxation, its forces
+  Vec work_;                         ///< scratch: the net force
+  Vec mask_;                         ///< 1 on momentum states, 0 on positions
+  Vec q_mask_;                       ///< 1 - mask_
+  bool split_ = false;               ///< the system's dissipation split is applied
+  bool drift_ = false;               ///< the system drifts its positions itself
+  bool relax_ = false;               ///< the system relaxes first-order states at the step start
+  bool relaxed_ = false;             ///< the step in y_new_ opened from y_start_, f_start_
+  bool opened_relaxed_ = false;      ///< ... the accepted one (opening_state())
+  int block_ = 1;                    ///< momentum entries per rotation block
+  bool metric_ = false;              ///< T_net is tracked (a metric, and a split or a budget)
+  double k_net_ = 0.0;               ///< kinetic energy of the held force at t_ [N^2/kg]
   double k_gap_ = 0.0;          ///< kinetic energy of the kicks' force minus k_net_ at t_ [N^2/kg]
   int grid_steps_at_rung_ = 0;  ///< grid steps taken since the rung last changed
   double h_last_ = 0.0;         ///< size of the last accepted step [s]
@@ -475,3 +493,14 @@ std::unique_ptr<Stepper> make_verlet_stepper(const SolverOptions& options, int n
 }
 
 }  // namespace pronk::ode::detail
+
+namespace pronk::ode {
+
+bool set_verlet_step(Stepper& stepper, double h) {
+  auto* verlet = dynamic_cast<detail::VerletStepper*>(&stepper);
+  if (verlet == nullptr || !(h > 0.0)) return false;
+  verlet->set_grid_step(h);
+  return true;
+}
+
+}  // namespace pronk::ode

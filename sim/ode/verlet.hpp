@@ -24,10 +24,23 @@ class VerletInfo {
   virtual double verlet_term() const = 0;
   /// The accumulated change of the invariant at step-size switches and restarts [J].
   virtual double switching_offset() const = 0;
+  /// The points the last accepted step's kicks read their forces at. Opening: the step's
+  /// start after the system's relaxation (MechanicalSystem::relax), or else the last closing
+  /// point (a restart's: its state). Closing: the positions at t() with the predicted momenta,
+  /// where velocity-dependent forces are read. A work booked with forces read elsewhere is not
+  /// the work the kicks did.
+  virtual const Vec& opening_state() const = 0;
+  virtual const Vec& closing_state() const = 0;
 
  protected:
   ~VerletInfo() = default;
 };
+
+/// Method verlet: h [s] becomes the grid step from the next reset() on (a run whose stiff
+/// modes come and go takes each phase at its own step; the change of Verlet's bounded term
+/// enters the switching offset as any step-size switch). False, changing nothing, for the
+/// other methods.
+bool set_verlet_step(Stepper& stepper, double h);
 
 /// True when stepper books the dissipated energy itself (VerletInfo::books_dissipation).
 inline bool books_dissipation(const Stepper& stepper) {

@@ -28,12 +28,6 @@ constexpr double kDopri5Stability = 3.3;
 /// 4.6e-5 s: dopri5 0.83 s, radau5 0.44 s.)
 constexpr double kRobotAccuracyStep = 8e-5;
 
-/// x rounded down to two significant digits (x > 0).
-double round_down_2(double x) {
-  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
-  return std::floor(x / scale * (1.0 + 1e-12)) * scale;
-}
-
 /// "1.2e4 rad/s (1.9 kHz)".
 std::string frequency_text(double omega) {
   char buf[80];
@@ -132,6 +126,11 @@ MethodChoice smooth_robot(const SceneProbe& p, const AutoRequest& r) {
 
 }  // namespace
 
+double round_down_2(double x) {
+  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+  return std::floor(x / scale * (1.0 + 1e-12)) * scale;
+}
+
 MethodChoice choose_method(const SceneProbe& p, const AutoRequest& r) {
   const double a = r.accuracy;
   if (!(p.omega_max > 0.0)) {
@@ -211,6 +210,7 @@ void apply_choice(const MethodChoice& c, ode::SolverOptions* solver, double* ene
   solver->method = c.method;
   if (c.method == ode::Method::kVerlet) {
     solver->h_fixed = c.h_fixed;
+    solver->h_flight = c.h_flight;
     *energy_tol = c.energy_tol;
   } else {
     solver->rtol = c.rtol;

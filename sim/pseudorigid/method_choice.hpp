@@ -63,6 +63,7 @@ struct AutoRequest {
 struct MethodChoice {
   ode::Method method = ode::Method::kVerlet;
   double h_fixed = 0.0;     ///< verlet: its step [s]
+  double h_flight = 0.0;    ///< verlet: the step of flight segments [s], 0: h_fixed
   double energy_tol = 0.0;  ///< verlet: its energy budget, relative to the energy scale
   double rtol = 0.0;        ///< adaptive methods
   double atol = 0.0;        ///< adaptive methods
@@ -80,7 +81,10 @@ struct MethodChoice {
 constexpr double kMinAccuracy = 1e-12;
 constexpr double kMaxAccuracy = 0.5;
 /// The solver settings auto chooses (the scene readers refuse them under "auto").
-constexpr const char* kAutoChosenSettings[] = {"rtol", "atol", "h_fixed", "energy_tol"};
+constexpr const char* kAutoChosenSettings[] = {"rtol", "atol", "h_fixed", "energy_tol", "h_flight"};
+
+/// x rounded down to two significant digits (x > 0): auto's steps.
+double round_down_2(double x);
 
 /// Applies the rule of the header to a probe.
 MethodChoice choose_method(const SceneProbe& probe, const AutoRequest& request);

@@ -14,6 +14,8 @@ using Eigen::Vector3d;
 /// Energy changes are booked as hip work. Feet that crossed together (a symmetric landing)
 /// switch together: an event fires only once.
 void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
+  // (a lift-off books what its leg takes away as dissipated: quasi_static_switch)
+  const double d_before = run_.dissipated;
   const double e_before = sys_.energies(y).total();
   auto any_free = [&] {
     bool any = false;
@@ -60,7 +62,7 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
     data_.spring_stance = t - run_.contact_begin;
   }
   set_actuators();
-  book_work(e_before, y);
+  book_work(e_before - (run_.dissipated - d_before), y);
 }
 
 /// Quasi-static foot i at a foot event (`crossed`: its own): it lands when it reached the
@@ -68,7 +70,11 @@ void RobotRun::on_foot(size_t first, double t, ode::Vec& y) {
 void RobotRun::quasi_static_switch(size_t i, bool crossed, ode::Vec& y) {
   if (!crossed && !quasi_static_due(i, y)) return;
   if (sys_.pinned(i)) {  // lifts off: the ground no longer presses it
+    // What the leg holds as it leaves (its spring, slot and ground spring) stays with the
+    // massless foot, whose damper takes it in the air: dissipated, as far as the body goes.
+    const double e0 = sys_.energies(y).total();
     sys_.lift_foot(i, y);
+    run_.dissipated += e0 - sys_.energies(y).total();
     data_.push[i] = -sys_.foot_direction()[i];
   } else if (!sys_.free(i) || sys_.foot_event(i, y) < 0.0) {
     sys_.land_foot(i, y);  // reached the ground, which would press it

@@ -152,6 +152,16 @@ run::Next RobotRun::on_segment_end(const run::Segment& seg, ode::Vec& y,
   return next;
 }
 
+double RobotRun::fixed_step(double, const ode::Vec&) const {
+  if (!sys_.quasi_static() || solver_.method != ode::Method::kVerlet || !(solver_.h_flight > 0.0))
+    return 0.0;
+  for (size_t i = 0; i < legs_; ++i) {
+    if (sys_.pinned(i) || sys_.free(i))
+      return solver_.h_fixed;  // a foot on (or just off) the ground
+  }
+  return solver_.h_flight;
+}
+
 /// Quasi-static feet whose switch fell on this event's instant without a crossing of their
 /// own (a level drop: every foot reaches the ground as the CoM crosses the leg length): a foot
 /// in the air at or below the ground lands, a landed foot the ground no longer presses lifts.

@@ -106,6 +106,10 @@ class RobotRun final : public run::HybridModel {
   run::Next on_segment_end(const run::Segment& seg, ode::Vec& y,
                            const ode::Stepper& stepper) override;
   void on_restart() override { observer_.restart(); }
+  /// Quasi-static feet on method verlet with a flight step (SolverOptions::h_flight): the
+  /// flight step while every foot is in the air and every hip locked (nothing but gravity
+  /// acts on a rigid body then), h_fixed otherwise.
+  double fixed_step(double t, const ode::Vec& y) const override;
 
   RobotRunResult result;
 

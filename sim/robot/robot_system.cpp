@@ -24,6 +24,8 @@ RobotSystem::RobotSystem(const RobotModel& model, const pr::MechanismInputs& inp
       fb_(model.hip.size(), 0.0) {
   for (const auto& ms : model.mechanism.masses) inv_mass_.push_back(1.0 / ms.mass);
   rotation_ = sys_.rotation_state(model.body);
+  mech_dim_ = sys_.dimension();
+  body_first_ = 6 * model.mechanism.bodies[model.body].first_mass;
   extra_ = fp_ = fm_ = ode::Vec::Zero(actuator_force_size());
   if (model.quasi_static_feet) {
     qs_states_ = 2 * static_cast<int>(model.hip.size());
@@ -53,6 +55,10 @@ Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y) const {
 
 Vector3d RobotSystem::push_world(size_t i, const ode::Vec& y, const Eigen::Matrix3d& R) const {
   if (!free_[i] || (model_.foot[i] < 0 && qs_states_ == 0)) return R * push_[i];
+  if (pinned(i)) {  // (the stance's foot -> hip line, as below)
+    const Stance& st = stance_at(i, y);
+    if (st.l > 1e-12) return st.d;
+  }
   const Vector3d d = sys_.node_position(model_.hip_node[i], y) - foot_position(i, y);
   const double len = d.norm();
   return len > 1e-12 ? Vector3d(d / len) : Vector3d(R * push_[i]);
@@ -77,11 +83,22 @@ bool RobotSystem::feedback(const ode::Vec& y) const {
   if (qs_states_ == 0) return stance_feedback(y);
   // Quasi-static feet read the feedback at every foot's balance: memoised on the state (its
   // inputs' setters drop the memo).
-  if (fb_memo_ && fb_y_.size() == y.size() && (fb_y_.array() == y.array()).all()) return fb_on_;
-  fb_on_ = stance_feedback(y);
-  fb_y_ = y;
+  if (!fb_memo_) fb_memo_count_ = fb_memo_next_ = 0;
+  for (int k = 0; k < fb_memo_count_; ++k) {
+    const FeedbackMemo& m = fb_memo_entries_[static_cast<size_t>(k)];
+    if (m.y.size() == y.size() && (m.y.array() == y.array()).all()) {
+      std::copy(m.fb.begin(), m.fb.end(), fb_.begin());
+      return m.on;
+    }
+  }
+  FeedbackMemo& m = fb_memo_entries_[static_cast<size_t>(fb_memo_next_)];
+  m.on = stance_feedback(y);
+  m.y = y;
+  m.fb = fb_;
+  fb_memo_next_ = (fb_memo_next_ + 1) % kFeedbackMemo;
+  fb_memo_count_ = std::min(fb_memo_count_ + 1, kFeedbackMemo);
   fb_memo_ = true;
-  return fb_on_;
+  return m.on;
 }
 
 bool RobotSystem::stance_feedback(const ode::Vec& y) const {
@@ -136,7 +153,9 @@ bool RobotSystem::stance_feedback(const ode::Vec& y) const {
   // just landed is not lifted off again.
   for (size_t k = 0; k < g.size(); ++k) {
     const size_t i = g[k];
-    const double length = (sys_.node_position(model_.hip_node[i], y) - foot_position(i, y)).norm();
+    const double length =
+        pinned(i) ? stance_at(i, y).l
+                  : (sys_.node_position(model_.hip_node[i], y) - foot_position(i, y)).norm();
     const double rest = qs_states_ > 0
                             ? rest_[i]
                             : sys_.inputs().rest_length[static_cast<size_t>(model_.leg_spring[i])];

@@ -27,7 +27,7 @@ class RobotSystem final : public ode::MechanicalSystem {
               const scene::PseudoRigid& settings);
 
   /// The mechanism's states, then (quasi-static feet) two per leg (foot_state()).
-  int dimension() const override { return sys_.dimension() + qs_states_; }
+  int dimension() const override { return mech_dim_ + qs_states_; }
   /// The mechanism's initial state, the feet's states zero (quasi-static feet start in the air
   /// at their rest length).
   ode::Vec initial_state() const;
@@ -100,7 +100,7 @@ class RobotSystem final : public ode::MechanicalSystem {
   // actuator does), and transmits nothing.
   bool quasi_static() const { return qs_states_ > 0; }
   /// Index of leg i's two foot states in y.
-  int foot_state(size_t i) const { return sys_.dimension() + 2 * static_cast<int>(i); }
+  int foot_state(size_t i) const { return mech_dim_ + 2 * static_cast<int>(i); }
   /// Leg i's foot position at y [m] (a foot mass's position, or the quasi-static foot's).
   Eigen::Vector3d foot_position(size_t i, const ode::Vec& y) const;
   /// Quasi-static legs' run-time inputs: rest length [m], leg direction hip -> foot and slot
@@ -218,7 +218,9 @@ class RobotSystem final : public ode::MechanicalSystem {
   /// (quasi-static feet) the position states the stances read: the rigid body's CoM and
   /// attitude (7); otherwise every mass's position (the four and any dummy hip masses).
   int body_key_size() const { return rotation_ >= 0 ? 7 : 3 * static_cast<int>(inv_mass_.size()); }
-  double body_key(const ode::Vec& y, int j) const;
+  /// True when y's body key and feet's states are those of `key`; with `store`, writes them
+  /// there first.
+  bool same_key(const ode::Vec& y, Eigen::VectorXd& key, bool store) const;
   /// The minimum-norm solution of A f = b (A: 3 x legs) into f_.
   const Eigen::VectorXd& min_norm_solve(const Eigen::MatrixXd& A, const Eigen::Vector3d& b) const;
 
@@ -230,6 +232,8 @@ class RobotSystem final : public ode::MechanicalSystem {
   std::vector<bool> free_;
   std::vector<double> inv_mass_;
   int rotation_ = -1;                                 ///< rigid body: its rotation states in y
+  int mech_dim_ = 0;                                  ///< the mechanism's states (sys_'s)
+  int body_first_ = 0;                                ///< the body's first state in y
   int qs_states_ = 0;                                 ///< quasi-static feet: 2 per leg, else 0
   std::vector<double> rest_;                          ///< quasi-static legs' rest lengths [m]
   std::vector<bool> pinned_;                          ///< quasi-static feet on the ground
@@ -246,10 +250,18 @@ class RobotSystem final : public ode::MechanicalSystem {
   // directions, system and solution, and the Jacobian's perturbed state and triplets.
   mutable ode::Vec extra_, fp_, fm_;
   mutable std::vector<double> fb_;
-  // (quasi-static feet) feedback()'s memo: the state of fb_ and its result; dropped by the
-  // setters of what else it reads.
-  mutable ode::Vec fb_y_;
-  mutable bool fb_memo_ = false, fb_on_ = false;
+  // (quasi-static feet) feedback()'s memo: the last kFeedbackMemo states, their fb_ and
+  // results (a step reads the feedback at its opening, closing and end points, and the events
+  // and monitors at the end again); dropped by the setters of what else it reads.
+  static constexpr int kFeedbackMemo = 4;
+  struct FeedbackMemo {
+    ode::Vec y;
+    std::vector<double> fb;
+    bool on = false;
+  };
+  mutable std::array<FeedbackMemo, kFeedbackMemo> fb_memo_entries_;
+  mutable int fb_memo_count_ = 0, fb_memo_next_ = 0;
+  mutable bool fb_memo_ = false;
   // (quasi-static feet) stance_at()'s memo: its key and the pinned legs' stances.
   mutable Eigen::VectorXd st_key_;
   mutable std::vector<Stance> st_;

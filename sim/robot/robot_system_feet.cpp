@@ -107,26 +107,37 @@ RobotSystem::Stance RobotSystem::stance(size_t i, const Vector2d& s, const Vecto
   return st;
 }
 
-double RobotSystem::body_key(const ode::Vec& y, int j) const {
-  if (rotation_ >= 0) {
-    const int c = 6 * model_.mechanism.bodies[model_.body].first_mass;
-    return j < 3 ? y[c + j] : y[rotation_ + j - 3];
+bool RobotSystem::same_key(const ode::Vec& y, Eigen::VectorXd& key, bool store) const {
+  const int nb = body_key_size();
+  if (store) {
+    key.resize(nb + qs_states_);
+    if (rotation_ >= 0) {
+      key.head<3>() = y.segment<3>(body_first_);
+      key.segment<4>(3) = y.segment<4>(rotation_);
+    } else {
+      for (int j = 0; 3 * j < nb; ++j) key.segment<3>(3 * j) = y.segment<3>(6 * j);
+    }
+    key.tail(qs_states_) = y.segment(mech_dim_, qs_states_);
+    return true;
   }
-  return y[6 * (j / 3) + j % 3];
+  if (key.size() != nb + qs_states_) return false;
+  if (!(key.tail(qs_states_).array() == y.segment(mech_dim_, qs_states_).array()).all())
+    return false;
+  if (rotation_ >= 0) {
+    return (key.head<3>().array() == y.segment<3>(body_first_).array()).all() &&
+           (key.segment<4>(3).array() == y.segment<4>(rotation_).array()).all();
+  }
+  for (int j = 0; 3 * j < nb; ++j) {
+    if (!(key.segment<3>(3 * j).array() == y.segment<3>(6 * j).array()).all()) return false;
+  }
+  return true;
 }
 
 const RobotSystem::Stance& RobotSystem::stance_at(size_t i, const ode::Vec& y) const {
   // Keyed on what a stance reads of y: the body's positions (and attitude) and the feet's
   // states.
-  const int nb = body_key_size();
-  const int n = nb + qs_states_;
-  bool hit = st_memo_ && st_key_.size() == n;
-  for (int j = 0; hit && j < nb; ++j) hit = st_key_[j] == body_key(y, j);
-  for (int j = 0; hit && j < qs_states_; ++j) hit = st_key_[nb + j] == y[foot_state(0) + j];
-  if (!hit) {
-    st_key_.resize(n);
-    for (int j = 0; j < nb; ++j) st_key_[j] = body_key(y, j);
-    st_key_.tail(qs_states_) = y.segment(foot_state(0), qs_states_);
+  if (!(st_memo_ && same_key(y, st_key_, false))) {
+    same_key(y, st_key_, true);
     st_.resize(pinned_.size());
     for (size_t k = 0; k < pinned_.size(); ++k) {
       if (!pinned_[k]) continue;
@@ -296,10 +307,7 @@ double RobotSystem::relax(double h, ode::Vec& y, bool* forces_moved) const {
     const int k = foot_state(i);
     if (!pinned_[i]) {  // in the air: the shortening relaxes exactly, to -a / k
       const double q0 = y[k], q_end = -applied_actuator(i) / k_leg_;
-      const double q1 =
-          c_leg_ > 0.0 ? q_end + (q0 - q_end) * std::exp(-h * k_leg_ / c_leg_) : q_end;
-      released += 0.5 * k_leg_ * (q0 * q0 - q1 * q1);
-      y[k] = q1;
+      y[k] = c_leg_ > 0.0 ? q_end + (q0 - q_end) * std::exp(-h * k_leg_ / c_leg_) : q_end;
       continue;
     }
     const Vector3d hip = sys_.node_position(model_.hip_node[i], y);
@@ -342,8 +350,10 @@ pr::Energies RobotSystem::energies(const ode::Vec& y) const {
 }
 
 double RobotSystem::foot_energy(size_t i, const ode::Vec& y) const {
-  const int k = foot_state(i);
-  if (!pinned_[i]) return 0.5 * k_leg_ * y[k] * y[k];
+  // A massless foot in the air holds its leg's spring against its damper and actuator,
+  // apart from the body: its energy is the leg's own (RobotRun books what a foot takes
+  // away at lift-off as dissipated, and what it brings at landing as actuator work).
+  if (!pinned_[i]) return 0.0;
   return stance_at(i, y).energy;
 }
 

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "sim/ode/verlet.hpp"
+
 namespace pronk::run {
 
 std::string fmt(double x) {
@@ -34,9 +36,20 @@ std::string failure_reason(const Segment& segment, const ode::Stepper& stepper,
   }
 }
 
+namespace {
+
+/// (Re)starts the stepper at (t, y) on the step the model asks for there.
+void restart(HybridModel& model, ode::Stepper& stepper, double t, const ode::Vec& y) {
+  const double h = model.fixed_step(t, y);
+  if (h > 0.0) ode::set_verlet_step(stepper, h);
+  stepper.reset(model.system(), t, y);
+}
+
+}  // namespace
+
 HybridEnd run_hybrid(HybridModel& model, ode::Stepper& stepper, double t0, const ode::Vec& y0) {
   HybridEnd end{t0, y0};
-  stepper.reset(model.system(), t0, y0);
+  restart(model, stepper, t0, y0);
   model.start(stepper, end.y);
   for (;;) {
     Segment seg;
@@ -56,7 +69,7 @@ HybridEnd run_hybrid(HybridModel& model, ode::Stepper& stepper, double t0, const
     }
     if (model.on_segment_end(seg, end.y, stepper) == Next::kStop) break;
     model.on_restart();
-    stepper.reset(model.system(), end.t, end.y);
+    restart(model, stepper, end.t, end.y);
   }
   return end;
 }

@@ -59,6 +59,9 @@ class HybridModel {
   virtual Next on_segment_end(const Segment& segment, ode::Vec& y, const ode::Stepper& stepper) = 0;
   /// The solver restarts at the segment's end (after kContinue).
   virtual void on_restart() {}
+  /// Method verlet: the grid step [s] of the segment that starts at (t, y), set before each
+  /// (re)start (ode::set_verlet_step); 0 keeps the stepper's.
+  virtual double fixed_step(double /*t*/, const ode::Vec& /*y*/) const { return 0.0; }
 };
 
 /// Where the run ended.

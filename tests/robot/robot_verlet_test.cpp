@@ -12,6 +12,7 @@
 
 #include "io/load/robot_settings.hpp"
 #include "io/load/scene_loader.hpp"
+#include "sim/robot/feet_step_bound.hpp"
 #include "sim/robot/pseudo_rigid_robot.hpp"
 #include "sim/robot/robot_simulator.hpp"
 #include "sim/robot/robot_system.hpp"
@@ -200,28 +201,40 @@ TEST_CASE("robot on verlet agrees with a tight RODAS4 reference (pr_running)", "
   CHECK(within(lat_a, lat_b, 1e-2));
 }
 
-// Auto checks a robot run too. pr_running, 2 s, with an accuracy of 1e-4: auto's Verlet at
-// h = 1.2e-4 s (no energy budget: restarts) drifts 2.2e-4, so it is rerun once at
-// h = 1.2e-4 x sqrt(0.5 x 1e-4 / 2.2e-4) = 5.7e-5 s (two digits, rounded down), which drifts
-// 8.6e-5 (measured). The cost reported is both runs'.
+// Auto checks a robot run too. pr_running on the rigid body and quasi-static feet, 2 s, with an
+// accuracy of 2e-5: auto's Verlet at h0 = 2.6e-4 s in stance (0.6 / omega of the body on its
+// landed feet, two digits rounded down; no energy budget: restarts) drifts 7.3e-5, so it is
+// rerun once at h0 sqrt(0.5 x 2e-5 / 7.3e-5) = 9.6e-5 s (two digits, rounded down), which
+// drifts 1.5e-5 (measured). The flight step is kept. The cost reported is both runs'.
 TEST_CASE("auto reruns a robot run that missed its budget, once, with the smaller step",
           "[robot][auto]") {
-  const scene::Scene s = load(
-      "pr_running.json", {"/simulation/duration=2", R"(/pseudo_rigid/solver={"accuracy": 1e-4})"});
+  const std::vector<std::string> qs = {"/simulation/duration=2", "/pseudo_rigid/body=\"rigid\"",
+                                       "/pseudo_rigid/feet=\"quasi_static\""};
+  std::vector<std::string> tight = qs;
+  tight.push_back(R"(/pseudo_rigid/solver={"accuracy": 2e-5})");
+  const scene::Scene s = load("pr_running.json", tight);
+  const robot::RobotModel m = robot::build_robot(s);
+  const double h0 = 2.6e-4;  // round_down_2(0.6 / omega), omega = 2.3e3 rad/s
+  REQUIRE(0.6 / robot::quasi_static_omega(s, m) == Approx(h0).epsilon(0.03));
   const robot::RobotRunResult r = robot::simulate(s);
   REQUIRE(r.run.status == reduced::RunStatus::kCompleted);
   const auto& c = r.monitors.method_choice;
   REQUIRE(r.monitors.method_auto);
   CHECK(c.reruns == 1);
-  CHECK(c.first_drift > 1e-4);
-  CHECK(c.h_fixed == Approx(1.2e-4 * std::sqrt(0.5e-4 / c.first_drift)).epsilon(0.02));
-  CHECK(c.h_fixed < 1.2e-4 * std::sqrt(0.5e-4 / c.first_drift));  // rounded down
-  CHECK(r.monitors.energy_drift <= 1e-4 * r.monitors.energy_scale);
-  // Both runs' steps: the first at 1.2e-4 s over 2 s, the rerun at c.h_fixed.
-  CHECK(r.run.cost.solver.steps_accepted >= static_cast<long>(2.0 / 1.2e-4 + 2.0 / c.h_fixed));
+  CHECK(c.first_drift > 2e-5);
+  CHECK(c.h_fixed == Approx(h0 * std::sqrt(1e-5 / c.first_drift)).epsilon(0.02));
+  CHECK(c.h_fixed < h0 * std::sqrt(1e-5 / c.first_drift));  // rounded down
+  CHECK(c.h_flight > 10.0 * h0);                            // flight keeps its step
+  CHECK(r.monitors.energy_drift <= 2e-5 * r.monitors.energy_scale);
+  // Both runs' steps: more than the rerun's settings take alone.
+  std::vector<std::string> rerun = qs;
+  rerun.push_back("/pseudo_rigid/solver={\"method\":\"verlet\",\"h_fixed\":" +
+                  std::to_string(c.h_fixed) + ",\"h_flight\":" + std::to_string(c.h_flight) + "}");
+  const robot::RobotRunResult alone = robot::simulate(load("pr_running.json", rerun));
+  CHECK(r.run.cost.solver.steps_accepted >
+        alone.run.cost.solver.steps_accepted + static_cast<long>(2.0 * 0.3 / h0));
   // The same scene at the default budget (1e-3) is not rerun.
-  const robot::RobotRunResult d =
-      robot::simulate(load("pr_running.json", {"/simulation/duration=2"}));
+  const robot::RobotRunResult d = robot::simulate(load("pr_running.json", qs));
   CHECK(d.monitors.method_choice.reruns == 0);
   CHECK(d.monitors.energy_drift <= 1e-3 * d.monitors.energy_scale);
 }
