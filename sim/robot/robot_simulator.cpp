@@ -106,6 +106,17 @@ std::optional<reduced::LimitBreach> feet_step_breach(const scene::Scene& scene,
                                                      const RobotModel& model,
                                                      const ode::SolverOptions& solver) {
   if (!model.quasi_static_feet || solver.method != ode::Method::kVerlet) return std::nullopt;
+  // Flight: the body's own springs (four masses; none on the rigid body).
+  const double omega_body = pr::probe_scene(model.mechanism).omega_max;
+  if (omega_body > 0.0 && solver.h_flight > 2.0 / omega_body) {
+    reduced::LimitBreach b;
+    b.field = "h_flight";
+    b.found = "verlet flight step " + run::fmt(solver.h_flight) + " s";
+    b.expected = "at most the body's own stability bound 2/omega = " + run::fmt(2.0 / omega_body) +
+                 " s (omega = " + run::fmt(omega_body) +
+                 " rad/s: its springs, every foot in the air)";
+    return b;
+  }
   const double omega = quasi_static_omega(scene, model);
   if (!(solver.h_fixed > 2.0 / omega)) return std::nullopt;
   reduced::LimitBreach b;

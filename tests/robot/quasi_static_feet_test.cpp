@@ -286,6 +286,14 @@ TEST_CASE("quasi-static feet: auto steps within the bound, a fixed step past it 
   CHECK(r.run.status == reduced::RunStatus::kDiverged);
   CHECK(r.run.reason.find("stability bound") != std::string::npos);
   CHECK(r.run.reason.find("rad/s") != std::string::npos);
+  // A flight step past the four-mass body's own bound (its springs, 2 / omega = 2 ms).
+  const robot::RobotRunResult f = robot::simulate(
+      load({kQuasi, "/pseudo_rigid/body=\"four_masses\"",
+            "/pseudo_rigid/solver={\"method\":\"verlet\",\"h_fixed\":2e-4,\"h_flight\":0.01}"}));
+  INFO(f.run.reason);
+  CHECK(f.run.status == reduced::RunStatus::kDiverged);
+  CHECK(f.run.reason.find("flight step 0.01 s") != std::string::npos);
+  CHECK(f.run.reason.find("own stability bound") != std::string::npos);
 }
 
 // A passive drop (no actuators) onto tilted feet: E + D - W (D: the energy the leg dampers and
