@@ -108,6 +108,14 @@ bool positive_finite(std::string* error, const char* field, double value) {
   return true;
 }
 
+/// Checks value >= 0 and finite.
+bool nonnegative_finite(std::string* error, const char* field, double value) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    return fail(error, field, value, "must be >= 0 and finite");
+  }
+  return true;
+}
+
 }  // namespace
 
 bool SolverOptions::validate(std::string* error) const {
@@ -118,12 +126,8 @@ bool SolverOptions::validate(std::string* error) const {
   if (!positive_finite(error, "rtol", rtol)) return false;
   if (!positive_finite(error, "atol", atol)) return false;
   if (!positive_finite(error, "h_fixed", h_fixed)) return false;
-  if (!(h_flight >= 0.0) || !std::isfinite(h_flight)) {
-    return fail(error, "h_flight", h_flight, "must be >= 0 and finite");
-  }
-  if (!(verlet_energy_budget >= 0.0) || !std::isfinite(verlet_energy_budget)) {
-    return fail(error, "verlet_energy_budget", verlet_energy_budget, "must be >= 0 and finite");
-  }
+  if (!nonnegative_finite(error, "h_flight", h_flight)) return false;
+  if (!nonnegative_finite(error, "verlet_energy_budget", verlet_energy_budget)) return false;
   if (!(h_initial >= 0.0)) return fail(error, "h_initial", h_initial, "must be >= 0");
   if (!std::isfinite(h_initial)) return fail(error, "h_initial", h_initial, "must be finite");
   if (!(h_max > 0.0)) return fail(error, "h_max", h_max, "must be > 0");
@@ -136,9 +140,7 @@ bool SolverOptions::validate(std::string* error) const {
   if (max_steps <= 0) {
     return fail(error, "max_steps", static_cast<double>(max_steps), "must be > 0");
   }
-  if (!(max_steps_per_second >= 0.0) || !std::isfinite(max_steps_per_second)) {
-    return fail(error, "max_steps_per_second", max_steps_per_second, "must be >= 0 and finite");
-  }
+  if (!nonnegative_finite(error, "max_steps_per_second", max_steps_per_second)) return false;
   if (error != nullptr) error->clear();
   return true;
 }

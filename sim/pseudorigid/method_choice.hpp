@@ -57,6 +57,13 @@ struct AutoRequest {
   double h_max = 0.1;     ///< the user's largest step [s]
   double t_end = 1.0;     ///< the run's length [s]
   bool restarts = false;  ///< the run restarts the integration at events (the robot)
+  /// verlet: a mode [rad/s] that rings through the run and whose dynamics matter, so the
+  /// step resolves it (omega h = 0.6) as well as staying stable; 0: none (quasi-static feet:
+  /// the body on its landed feet, sim/robot/feet_step_bound.hpp).
+  double resolve_omega = 0.0;
+  /// verlet: the largest step of the run's flight segments [s] (MethodChoice::h_flight,
+  /// at least the step); 0: none.
+  double flight_step = 0.0;
 };
 
 /// What auto chose and why.

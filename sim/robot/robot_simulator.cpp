@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <memory>
 #include <stdexcept>
 
@@ -22,10 +21,7 @@ using detail::RobotRun;
 
 namespace {
 
-// Quasi-static feet under auto: the stance step's resolution of the body's ringing on its
-// landed feet (omega h, as an elastic contact's), and flight's largest step [s].
-constexpr double kRingResolution = 0.6;
-constexpr double kFlightStep = 5e-3;
+constexpr double kFlightStep = 5e-3;  ///< quasi-static feet under auto: flight's largest step [s]
 
 /// Auto's choice written into the scene's solver settings and the built model's solver.
 void apply_to_scene(const pr::MethodChoice& c, scene::Scene* scene, RobotModel* model) {
@@ -33,42 +29,6 @@ void apply_to_scene(const pr::MethodChoice& c, scene::Scene* scene, RobotModel* 
   pr::apply_choice(c, &p.solver, &p.energy_tol);
   p.solver_auto = false;
   model->mechanism.simulation.solver = p.solver;
-}
-
-/// Quasi-static feet under auto's verlet, the steps of its two phases.
-/// - Stance: the body rings on its landed feet (omega, feet_step_bound.hpp: the slots and the
-///   creep in series, a Maxwell element of about half a stance, so the ringing lasts through
-///   it, as it does on 1 g feet). Verlet near its stability bound (omega h = 1.4) is stable
-///   but not accurate there: pr_running's first strides on four masses part from a refined
-///   run by 6 % in contact time and 1.7 deg in attitude. So the step resolves the ringing,
-///   omega h = kRingResolution: at 0.7 (2.8e-4 s on four masses) the first stance still ends
-///   with a 3 ms tap of a lifted foot the refined run does not have (contact time 5.6 % off),
-///   at 0.6 the first 10 strides agree within 1.1 % (rigid body 1.3 %).
-/// - Flight (every foot in the air, every hip locked): nothing acts on the body but gravity
-///   and its own springs (four masses; none on the rigid body), so flight takes the body's
-///   own verlet step (0.7 x 2 / omega_body) up to kFlightStep: its accuracy is the events'
-///   (a touchdown located on the dense output).
-void quasi_static_steps(double omega_feet, double omega_body, const pr::AutoRequest& request,
-                        pr::MethodChoice* c) {
-  const double stance = pr::round_down_2(kRingResolution / omega_feet);
-  if (stance < c->h_fixed) c->h_fixed = stance;
-  double flight = std::min(kFlightStep, request.h_max);
-  if (omega_body > 0.0) flight = std::min(flight, pr::round_down_2(0.7 * 2.0 / omega_body));
-  c->h_flight = std::max(flight, c->h_fixed);
-  // "auto: verlet h=H s, energy_tol 0 (WHY; probe ...)": the steps and why in their place.
-  char steps[96], why[160];
-  std::snprintf(steps, sizeof steps, "auto: verlet h=%.2g s in stance, %.2g s in flight",
-                c->h_fixed, c->h_flight);
-  std::snprintf(why, sizeof why,
-                "(omega h = %.1f: the body's ringing on its landed feet resolved, below the "
-                "stability limit 2/omega = %.2g s",
-                kRingResolution, 2.0 / omega_feet);
-  const size_t comma = c->reason.find(", energy_tol");
-  const size_t open = c->reason.find('(');
-  const size_t semi = c->reason.find(';', open);
-  if (comma != std::string::npos && open != std::string::npos && semi != std::string::npos) {
-    c->reason = steps + c->reason.substr(comma, open - comma) + why + c->reason.substr(semi);
-  }
 }
 
 /// "method": "auto": the scene with the method chosen for its built robot (model's solver
@@ -85,15 +45,22 @@ scene::Scene with_chosen_method(const scene::Scene& scene, RobotModel* model,
   if (model->quasi_static_feet) {
     // The stiff modes are the body's on its landed feet (feet_step_bound.hpp), which the
     // mechanism (the body alone) does not have: probed as contacts with that frequency.
+    // - Stance: the body rings on its landed feet (the slots and the creep in series, a
+    //   Maxwell element of about half a stance, as on 1 g feet), and near the stability bound
+    //   (omega h = 1.4) Verlet is stable but far from that ringing: the step resolves it.
+    // - Flight (every foot in the air, every hip locked): nothing acts on the body but
+    //   gravity and its own springs (four masses; none on the rigid body), so flight takes
+    //   the body's own verlet step (0.7 x 2 / omega_body) up to kFlightStep: its accuracy is
+    //   the events' (a touchdown located on the dense output).
     pr::SceneProbe probe = pr::probe_scene(model->mechanism);
     const double omega_body = probe.omega_max;  // the body's own springs (none if rigid)
-    const double omega_feet = quasi_static_omega(scene, *model);
-    probe.omega_max = probe.omega_bound = omega_feet;
+    probe.omega_max = probe.omega_bound = request.resolve_omega = quasi_static_omega(scene, *model);
     probe.contact = probe.dissipation = probe.dissipation_split = true;
-    *choice = pr::choose_method(probe, request);
-    if (choice->method == ode::Method::kVerlet) {
-      quasi_static_steps(omega_feet, omega_body, request, choice);
+    request.flight_step = std::min(kFlightStep, request.h_max);
+    if (omega_body > 0.0) {
+      request.flight_step = std::min(request.flight_step, pr::round_down_2(0.7 * 2.0 / omega_body));
     }
+    *choice = pr::choose_method(probe, request);
   } else {
     *choice = pr::choose_method(model->mechanism, request);
   }
