@@ -803,3 +803,24 @@ TEST_CASE("verlet's event restart is read, written back only when not the defaul
   check_error(parse_error(doc), "/pseudo_rigid/solver/event_restart",
               "one of \"interpolant\" \"step\"", "string \"midpoint\"");
 }
+
+TEST_CASE("verlet's flight step is read, written back only when set, and checked", "[io][scene]") {
+  json doc = io::read_json_file(std::string(PRONK_SOURCE_DIR) + "/studies/scenes/pr_running.json");
+  const scene::Scene plain = io::parse_scene(doc, "scene.json");
+  CHECK(plain.pseudo_rigid.solver.h_flight == 0.0);
+  // Absent at its default: the scenes recorded before the setting existed keep their hash.
+  CHECK_FALSE(io::scene_to_json(plain)["pseudo_rigid"]["solver"].contains("h_flight"));
+  doc["pseudo_rigid"]["feet"] = "quasi_static";
+  doc["pseudo_rigid"]["solver"] = {{"method", "verlet"}, {"h_fixed", 2.6e-4}, {"h_flight", 5e-3}};
+  const scene::Scene set = io::parse_scene(doc, "scene.json");
+  CHECK(set.pseudo_rigid.solver.h_flight == 5e-3);
+  CHECK(io::scene_to_json(set)["pseudo_rigid"]["solver"]["h_flight"] == 5e-3);
+  check_round_trip(doc);
+  doc["pseudo_rigid"]["solver"]["h_flight"] = -1e-3;
+  check_error(parse_error(doc), "/pseudo_rigid/solver/h_flight", "a finite number in [0, 1]",
+              "number -0.001");
+  // Auto chooses it.
+  doc["pseudo_rigid"]["solver"] = {{"method", "auto"}, {"h_flight", 5e-3}};
+  check_error(parse_error(doc), "/pseudo_rigid/solver/h_flight", "no h_flight under",
+              "number 0.005");
+}
